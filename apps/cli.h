@@ -1,0 +1,33 @@
+#pragma once
+// The rbcflow command line: each subcommand parses its arguments and calls the library.
+// Exit status (CASE_FORMAT.md): 0 success, 2 bad case file or argument, 1 failure in a run.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rbcflow::cli {
+
+// A bad argument or input file: the message names it; exit status 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Arguments after the subcommand name, consumed as they are parsed.
+class Args {
+ public:
+  Args(std::string command, std::vector<std::string> args);
+  bool flag(const std::string& name);                    // --name
+  bool option(const std::string& name, std::string& v);  // --name VALUE (or -o VALUE)
+  std::string positional(const std::string& what);       // next non-option, required
+  bool help_requested() const;
+  void finish() const;  // anything left over is an error
+
+ private:
+  std::string command_;
+  std::vector<std::string> args_;
+};
+
+int run_info(Args& args);
+int run_shape(Args& args);
+
+}  // namespace rbcflow::cli

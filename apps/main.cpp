@@ -1,0 +1,44 @@
+// rbcflow: red blood cells in Stokes flow by the spectral boundary integral method.
+// Thin: parse the command, call the library, report. Errors are caught here, once.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+
+namespace {
+
+void print_usage() {
+  std::printf(
+      "usage: rbcflow COMMAND [ARGS]\n"
+      "commands:\n"
+      "  info                 version, libraries, threads\n"
+      "  shape NAME -o F.vtp  export a reference cell shape (rbc, sphere, ellipsoid, ...)\n"
+      "Run 'rbcflow COMMAND --help' for the arguments of a command.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace rbcflow::cli;
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    print_usage();
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  Args args(command, std::vector<std::string>(argv + 2, argv + argc));
+  try {
+    if (command == "info") return run_info(args);
+    if (command == "shape") return run_shape(args);
+    std::fprintf(stderr, "rbcflow: unknown command '%s'\n", command.c_str());
+    print_usage();
+    return 2;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rbcflow %s: error: %s\n", command.c_str(), e.what());
+    return 1;
+  }
+}

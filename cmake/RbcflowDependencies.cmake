@@ -1,0 +1,63 @@
+# Finds every package of the stack from Debian 12 packages (see shared STACK.md).
+# A missing package stops configuration with the name of the Debian package to install;
+# scripts/install-deps.sh installs all of them.
+
+macro(rbcflow_require found_var debian_package what)
+  if(NOT ${found_var})
+    message(FATAL_ERROR
+      "rbcflow: ${what} not found. Install the Debian package '${debian_package}' "
+      "(apt-get install ${debian_package}), or run scripts/install-deps.sh as root.")
+  endif()
+endmacro()
+
+find_package(Eigen3 3.3 QUIET NO_MODULE)
+rbcflow_require(Eigen3_FOUND libeigen3-dev "Eigen 3")
+
+find_package(PkgConfig QUIET)
+rbcflow_require(PKG_CONFIG_FOUND pkg-config "pkg-config")
+pkg_check_modules(FFTW3 QUIET IMPORTED_TARGET fftw3)   # Debian ships no FFTW3Config.cmake
+rbcflow_require(FFTW3_FOUND libfftw3-dev "FFTW 3")
+find_library(FFTW3_OMP_LIBRARY fftw3_omp)
+rbcflow_require(FFTW3_OMP_LIBRARY libfftw3-dev "FFTW 3 OpenMP library (fftw3_omp)")
+
+find_path(GMSH_INCLUDE_DIR gmsh.h)                      # gmsh has no cmake or pc file
+find_library(GMSH_LIBRARY gmsh)
+rbcflow_require(GMSH_INCLUDE_DIR libgmsh-dev "gmsh C++ API header gmsh.h")
+rbcflow_require(GMSH_LIBRARY libgmsh-dev "gmsh library")
+if(NOT TARGET rbcflow::gmsh)
+  add_library(rbcflow::gmsh INTERFACE IMPORTED)
+  target_include_directories(rbcflow::gmsh INTERFACE ${GMSH_INCLUDE_DIR})
+  target_link_libraries(rbcflow::gmsh INTERFACE ${GMSH_LIBRARY})
+endif()
+file(STRINGS ${GMSH_INCLUDE_DIR}/gmsh.h _gmsh_version_line REGEX "define GMSH_API_VERSION \"")
+string(REGEX MATCH "[0-9.]+" GMSH_VERSION "${_gmsh_version_line}")
+
+find_package(VTK 9.1 QUIET COMPONENTS CommonCore CommonDataModel FiltersCore FiltersSources
+  IOXML IOImage IOGeometry RenderingCore RenderingOpenGL2 RenderingFreeType InteractionStyle)
+rbcflow_require(VTK_FOUND libvtk9-dev "VTK 9")
+
+find_package(CGAL 5.5 QUIET)
+rbcflow_require(CGAL_FOUND libcgal-dev "CGAL 5.5")
+
+set(HDF5_PREFER_PARALLEL OFF)          # pkg-config hdf5 points at the OpenMPI build
+find_package(HDF5 QUIET COMPONENTS C CXX)
+rbcflow_require(HDF5_FOUND libhdf5-dev "HDF5 (serial, C and C++)")
+
+find_package(OpenMP QUIET)
+rbcflow_require(OpenMP_CXX_FOUND "g++ (libgomp)" "OpenMP for C++")
+
+find_package(toml11 QUIET)
+rbcflow_require(toml11_FOUND libtoml11-dev "toml11")
+
+find_package(Boost 1.74 QUIET)         # header-only Boost.Math (reference values in tests)
+rbcflow_require(Boost_FOUND libboost-dev "Boost headers")
+
+if(RBCFLOW_BUILD_TESTS)
+  find_package(GTest QUIET)
+  rbcflow_require(GTest_FOUND libgtest-dev "GoogleTest")
+  include(GoogleTest)
+endif()
+if(RBCFLOW_BUILD_BENCH)
+  find_package(benchmark QUIET)
+  rbcflow_require(benchmark_FOUND libbenchmark-dev "Google Benchmark")
+endif()

@@ -1,0 +1,91 @@
+#include "vtk_polydata.h"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <stdexcept>
+
+#include "atomic_file.h"
+
+namespace rbcflow {
+
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::vector<PointField>& fields) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh.num_points());
+  for (int p = 0; p < mesh.num_points(); ++p) {
+    points->SetPoint(p, mesh.points(p, 0), mesh.points(p, 1), mesh.points(p, 2));
+  }
+  vtkNew<vtkCellArray> cells;
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const vtkIdType ids[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
+    cells->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetPolys(cells);
+  for (const PointField& f : fields) {
+    if (f.values.rows() != mesh.num_points()) {
+      throw std::invalid_argument("write_vtp: field '" + f.name + "' has " +
+                                  std::to_string(f.values.rows()) + " rows for " +
+                                  std::to_string(mesh.num_points()) + " points");
+    }
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(f.name.c_str());
+    array->SetNumberOfComponents(static_cast<int>(f.values.cols()));
+    array->SetNumberOfTuples(mesh.num_points());
+    for (int p = 0; p < mesh.num_points(); ++p) {
+      for (int c = 0; c < f.values.cols(); ++c) array->SetComponent(p, c, f.values(p, c));
+    }
+    poly->GetPointData()->AddArray(array);
+  }
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(tmp.c_str());
+    writer->SetInputData(poly);
+    writer->SetDataModeToBinary();
+    if (writer->Write() != 1) throw std::runtime_error("cannot write " + path.string());
+  });
+}
+
+TriangleMesh read_vtp(const std::filesystem::path& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw std::runtime_error("cannot read " + path.string() + ": no such file");
+  }
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  if (!poly || poly->GetNumberOfPoints() == 0) {
+    throw std::runtime_error("cannot read " + path.string() + ": not a VTK PolyData file with points");
+  }
+  TriangleMesh mesh;
+  mesh.points.resize(poly->GetNumberOfPoints(), 3);
+  for (vtkIdType p = 0; p < poly->GetNumberOfPoints(); ++p) {
+    double x[3];
+    poly->GetPoint(p, x);
+    mesh.points.row(p) << x[0], x[1], x[2];
+  }
+  vtkCellArray* polys = poly->GetPolys();
+  mesh.triangles.resize(polys->GetNumberOfCells(), 3);
+  vtkNew<vtkIdList> ids;
+  polys->InitTraversal();
+  for (int t = 0; polys->GetNextCell(ids); ++t) {
+    if (ids->GetNumberOfIds() != 3) {
+      throw std::runtime_error("cannot read " + path.string() + ": cell " + std::to_string(t) +
+                               " is not a triangle");
+    }
+    mesh.triangles.row(t) << ids->GetId(0), ids->GetId(1), ids->GetId(2);
+  }
+  return mesh;
+}
+
+}  // namespace rbcflow

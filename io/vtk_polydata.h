@@ -1,0 +1,25 @@
+#pragma once
+// VTK XML PolyData (.vtp) output of triangle meshes with point data, for ParaView.
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+
+namespace rbcflow {
+
+// A named field on the points of a mesh: one row per point, 1 (scalar) or 3 (vector) columns.
+struct PointField {
+  std::string name;
+  Eigen::MatrixXd values;
+};
+
+// Writes `mesh` and its point fields as a binary, compressed .vtp file (atomically).
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::vector<PointField>& fields = {});
+
+// Reads the points and triangles of a .vtp file (non-triangle cells are an error).
+TriangleMesh read_vtp(const std::filesystem::path& path);
+
+}  // namespace rbcflow

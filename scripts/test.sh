@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# From a fresh Debian 12 clone to the whole default test suite: install the packages, build in
+# Release with warnings as errors, run CTest (everything but the on-demand `slow` label), then
+# build with AddressSanitizer + UBSan and run the unit tests again.
+#   scripts/test.sh            default suite
+#   RBCFLOW_TEST_LABELS=slow scripts/test.sh      also the long validations (hours)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/install-deps.sh
+jobs=$(nproc)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRBCFLOW_WERROR=ON
+cmake --build build -j "$jobs"
+
+# VTK renders only through X: tests run under a virtual display (see docs/rendering.md).
+run_ctest() { xvfb-run -a -s "-screen 0 1280x1024x24" ctest "$@"; }
+
+if [ "${RBCFLOW_TEST_LABELS:-}" = "slow" ]; then
+  run_ctest --test-dir build --output-on-failure -j "$jobs"
+else
+  run_ctest --test-dir build --output-on-failure -j "$jobs" -LE slow
+fi
+
+if [ "${RBCFLOW_SKIP_SANITIZERS:-0}" != "1" ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRBCFLOW_SANITIZE=ON \
+        -DRBCFLOW_WERROR=ON -DRBCFLOW_BUILD_BENCH=OFF
+  cmake --build build-asan -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    run_ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
+fi
