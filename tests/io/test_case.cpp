@@ -1,0 +1,355 @@
+// Case files: every key and default, the round trip through write_case_toml, and bad input
+// (each error names the file, the line, the key and the allowed range).
+#include "io/case.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace rbcflow;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kFull = R"(title = "27 cells"
+
+[domain]
+kind = "periodic"
+box = [6.6, 6.6, 12.0]
+mean_velocity = [0, 0, 5]
+viscosity_ratio = 5.0
+
+[vessel]
+kind = "tube"
+diameter = 6.0
+axis = "z"
+element_size = 0.25
+
+[cells]
+shape = "rbc"
+count = 27
+order = 16
+dealias = 3
+seed = 1
+body_force = [0, 0, -1]
+perturbation = { l = 4, m = 2, amplitude = 1e-4 }
+
+[cells.membrane]
+law = "skalak"
+shear_modulus = 12.4
+dilatation_modulus = 200
+bending_modulus = 0.0669
+
+[ewald]
+tolerance = 1e-6
+alpha = 1.5
+cutoff = 3.0
+grid = [64, 64, 128]
+spline_order = 6
+
+[solver]
+gmres_tolerance = 1e-6
+max_iterations = 100
+
+[time]
+end = 10.0
+dt = "auto"
+scheme = "euler"
+collision_threshold = 0.02
+volume_constraint = true
+
+[output]
+dir = "out/tube6"
+every = 100
+formats = ["xdmf", "vtk"]
+render = true
+render_every = 0
+checkpoint_every = 1000
+)";
+
+// A minimal periodic case followed by `extra` lines.
+std::string minimal(const std::string& extra = "") {
+  return "[domain]\nbox = [10, 10, 10]\nmean_velocity = [0, 0, 1]\n" + extra;
+}
+
+// The message of the CaseError that parsing `text` throws ("" if none).
+std::string error_of(const std::string& text, const fs::path& file = "bad.toml") {
+  try {
+    parse_case(text, file);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(Case, ContractExampleReadsEveryKey) {
+  const Case c = parse_case(kFull, "cases/tube6.toml");
+  EXPECT_EQ(c.title, "27 cells");
+  EXPECT_EQ(c.domain.kind, DomainKind::periodic);
+  EXPECT_EQ(c.domain.box, (Vec3{6.6, 6.6, 12.0}));
+  ASSERT_TRUE(c.domain.mean_velocity);
+  EXPECT_EQ(*c.domain.mean_velocity, (Vec3{0, 0, 5}));
+  EXPECT_FALSE(c.domain.pressure_gradient);
+  ASSERT_TRUE(c.vessel);
+  EXPECT_EQ(c.vessel->kind, VesselKind::tube);
+  EXPECT_EQ(c.vessel->diameter, 6.0);
+  EXPECT_EQ(c.vessel->axis, 2);
+  ASSERT_TRUE(c.cells);
+  EXPECT_EQ(c.cells->count, 27);
+  EXPECT_FALSE(c.cells->hematocrit);
+  EXPECT_EQ(c.cells->order, 16);
+  EXPECT_EQ(c.cells->dealias, 3);
+  EXPECT_EQ(c.cells->body_force, (Vec3{0, 0, -1}));
+  ASSERT_TRUE(c.cells->perturbation);
+  EXPECT_EQ(c.cells->perturbation->l, 4);
+  EXPECT_EQ(c.cells->perturbation->m, 2);
+  EXPECT_EQ(c.cells->membrane.dilatation_modulus, 200.0);  // an integer where a float is expected
+  EXPECT_EQ(c.ewald.grid, (std::array<int, 3>{64, 64, 128}));
+  EXPECT_EQ(c.ewald.spline_order, 6);
+  EXPECT_FALSE(c.time.dt);  // "auto"
+  EXPECT_EQ(c.output.dir, fs::path("out/tube6"));
+  EXPECT_TRUE(c.output.xdmf && c.output.vtk);
+  // Lines are recorded for later messages.
+  EXPECT_EQ(c.source.line("cells.order"), 18);
+  EXPECT_EQ(c.source.line("cells.nonexistent"), 15);  // falls back to the table's line
+}
+
+TEST(Case, DefaultsAreFilledIn) {
+  const Case c = parse_case(minimal(), "dir/my_case.toml");
+  EXPECT_EQ(c.title, "my_case");
+  EXPECT_EQ(c.output.dir, fs::path("out/my_case"));
+  EXPECT_EQ(c.domain.viscosity_ratio, 5.0);
+  EXPECT_FALSE(c.vessel);
+  EXPECT_FALSE(c.cells);
+  EXPECT_EQ(c.ewald.tolerance, 1e-6);
+  EXPECT_FALSE(c.ewald.alpha);
+  EXPECT_EQ(c.solver.max_iterations, 100);
+  EXPECT_EQ(c.time.end, 10.0);
+  EXPECT_EQ(c.time.scheme, TimeScheme::euler);
+  EXPECT_EQ(c.output.every, 100);
+  EXPECT_EQ(c.output.checkpoint_every, 1000);
+  const Case cells = parse_case(minimal("[cells]\n"), "x.toml");
+  ASSERT_TRUE(cells.cells);
+  EXPECT_EQ(cells.cells->count, 1);
+  EXPECT_EQ(cells.cells->shape, CellShape::rbc);
+  EXPECT_EQ(cells.cells->membrane.shear_modulus, 12.4);
+  EXPECT_EQ(cells.cells->membrane.bending_modulus, 0.0669);
+}
+
+TEST(Case, AlternativesAreRead) {
+  const Case free = parse_case(
+      "[domain]\nkind = \"free\"\nviscosity_ratio = 1\n"
+      "background_flow = { kind = \"shear\", rate = 2.0 }\n[cells]\nshape = \"ellipsoid\"\n"
+      "semi_axes = [0.5, 1, 1.5]\npositions = [[0, 0, 0]]\norientations = [[1, 0, 0]]\n",
+      "f.toml");
+  EXPECT_EQ(free.domain.kind, DomainKind::free);
+  EXPECT_EQ(free.domain.background_flow, (BackgroundFlow{FlowKind::shear, 2.0}));
+  EXPECT_EQ(free.cells->semi_axes, (Vec3{0.5, 1, 1.5}));
+  EXPECT_EQ(free.cells->count, 1);  // from the positions
+  const Case ext = parse_case(
+      "[domain]\nkind = \"free\"\nbackground_flow = { kind = \"extensional\", rate = 0.5 }\n", "e.toml");
+  EXPECT_EQ(ext.domain.background_flow.kind, FlowKind::extensional);
+
+  const Case grad = parse_case(
+      "[domain]\nbox = [6, 6, 10]\npressure_gradient = [0, 0, -2]\n[vessel]\nkind = \"constriction\"\n"
+      "diameter = 3.5\ndepth = 2.2\nwidth = 1.2\n[cells]\nhematocrit = 0.2\n"
+      "[time]\ndt = 1e-3\nscheme = \"ab2\"\n[output]\nformats = [\"vtk\"]\n",
+      "g.toml");
+  EXPECT_EQ(*grad.domain.pressure_gradient, (Vec3{0, 0, -2}));
+  EXPECT_EQ(grad.vessel->center, 5.0);  // default: the middle of the box along the axis
+  EXPECT_EQ(grad.cells->hematocrit, 0.2);
+  EXPECT_FALSE(grad.cells->count);
+  EXPECT_EQ(grad.time.dt, 1e-3);
+  EXPECT_EQ(grad.time.scheme, TimeScheme::ab2);
+  EXPECT_FALSE(grad.output.xdmf);
+  EXPECT_TRUE(grad.output.vtk);
+
+  const Case bif = parse_case(minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\n"), "b.toml");
+  EXPECT_NEAR(bif.vessel->daughter_diameters[0], 4 / std::cbrt(2.0), 1e-15);  // Murray's law
+  EXPECT_EQ(bif.vessel->angle_deg, 60.0);
+}
+
+TEST(Case, VesselFileIsRelativeToTheCaseFile) {
+  const fs::path dir = fs::temp_directory_path() / "rbcflow_test_case_file";
+  fs::create_directories(dir / "vessels");
+  std::ofstream(dir / "vessels" / "my.stl") << "solid x\nendsolid x\n";
+  const Case c = parse_case(minimal("[vessel]\nkind = \"file\"\npath = \"vessels/my.stl\"\n"), dir / "c.toml");
+  EXPECT_EQ(c.vessel->path, dir / "vessels" / "my.stl");
+  const std::string e = error_of(minimal("[vessel]\nkind = \"file\"\npath = \"vessels/none.msh\"\n"), dir / "c.toml");
+  EXPECT_TRUE(contains(e, ":6: vessel.path: no such file")) << e;
+  fs::remove_all(dir);
+}
+
+TEST(Case, WrittenCaseReadsBackEqual) {
+  const fs::path dir = fs::temp_directory_path() / "rbcflow_test_case_roundtrip";
+  fs::create_directories(dir);
+  std::ofstream(dir / "wall.msh") << "$MeshFormat\n";
+  const std::vector<std::string> cases = {
+      kFull,
+      minimal(),
+      "title = \"quote \\\" and \\\\ backslash\"\n[domain]\nkind = \"free\"\n"
+      "background_flow = { kind = \"shear\", rate = 0.1 }\n[cells]\nshape = \"ellipsoid\"\n"
+      "positions = [[0.1, 0.2, 0.3], [3, 0, 0]]\norientations = [[1, 1, 0], [0, 0, 1]]\n"
+      "[cells.membrane]\nlaw = \"neo-hookean\"\n[time]\ndt = 0.001\n",
+      minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.5]\n"
+              "[cells]\nhematocrit = 0.3\n[output]\nformats = []\nrender_view = \"end\"\n"),
+      minimal("[vessel]\nkind = \"file\"\npath = \"wall.msh\"\nscale = 0.354\n[ewald]\ngrid = [8, 8, 8]\n"),
+  };
+  for (const std::string& text : cases) {
+    const Case c = parse_case(text, dir / "in.toml");
+    write_case_toml(c, dir / "case.toml");
+    const Case back = read_case(dir / "case.toml");
+    EXPECT_EQ(back, c) << case_toml(c);
+    EXPECT_EQ(case_toml(back), case_toml(c));
+    EXPECT_EQ(case_fingerprint(back), case_fingerprint(c));
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Case, FingerprintIgnoresOutputTitleAndEndTimeOnly) {
+  const Case a = parse_case(kFull, "a.toml");
+  Case b = a;
+  b.title = "other";
+  b.output.dir = "elsewhere";
+  b.time.end = 20;
+  EXPECT_EQ(case_fingerprint(a), case_fingerprint(b));
+  EXPECT_EQ(case_fingerprint(a).size(), 16u);
+  b.cells->order = 12;
+  EXPECT_NE(case_fingerprint(a), case_fingerprint(b));
+  Case c = a;
+  c.domain.mean_velocity = Vec3{0, 0, 5.000000001};
+  EXPECT_NE(case_fingerprint(a), case_fingerprint(c));
+}
+
+TEST(Case, MalformedTomlNamesFileAndLine) {
+  const std::string e = error_of("[domain]\nbox = [1, 2\n", "broken.toml");
+  EXPECT_TRUE(contains(e, "broken.toml:")) << e;
+  EXPECT_TRUE(contains(e, "malformed TOML")) << e;
+  const std::string twice = error_of("[domain]\nbox = [1, 1, 1]\nbox = [2, 2, 2]\n");
+  EXPECT_TRUE(contains(twice, "bad.toml:3: malformed TOML")) << twice;
+  EXPECT_TRUE(contains(error_of("\xff\xfe garbage = = ="), "malformed TOML"));
+}
+
+TEST(Case, UnknownKeysAreErrors) {
+  EXPECT_EQ(error_of(minimal("[cells]\norder = 8\nordr = 9\n")), "bad.toml:6: cells.ordr: unknown key in [cells]");
+  EXPECT_EQ(error_of("colour = 1\n" + minimal()), "bad.toml:1: colour: unknown key");
+  EXPECT_EQ(error_of(minimal("[frobnicate]\nx = 1\n")), "bad.toml:4: frobnicate: unknown key");
+  EXPECT_TRUE(contains(error_of(minimal("[cells.membrane]\nshear = 1\n")), "cells.membrane.shear: unknown key"));
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\nperturbation = { l = 2, n = 1 }\n")),
+                       "cells.perturbation.n: unknown key"));
+  // Keys of another kind say where they apply.
+  EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 3\ndepth = 1\n")),
+            "bad.toml:6: vessel.depth: applies only to kind = \"constriction\"");
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\nsemi_axes = [1, 1, 1]\n")), "applies only to shape = \"ellipsoid\""));
+}
+
+TEST(Case, WrongTypesAreErrors) {
+  EXPECT_EQ(error_of(minimal("[cells]\norder = 16.5\n")),
+            "bad.toml:5: cells.order: expected an integer, got a floating-point number");
+  EXPECT_EQ(error_of(minimal("[cells]\norder = \"16\"\n")),
+            "bad.toml:5: cells.order: expected an integer, got a string");
+  EXPECT_EQ(error_of("[domain]\nbox = 10\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:2: domain.box: expected an array of 3 numbers, got an integer");
+  EXPECT_EQ(error_of("[domain]\nbox = [10, 10]\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:2: domain.box: expected an array of 3 numbers, got 2 elements");
+  EXPECT_EQ(error_of(minimal("[time]\nvolume_constraint = 1\n")),
+            "bad.toml:5: time.volume_constraint: expected true or false, got an integer");
+  EXPECT_EQ(error_of(minimal("[time]\ndt = \"fast\"\n")),
+            "bad.toml:5: time.dt: \"fast\" is not allowed (a number or \"auto\")");
+  EXPECT_EQ(error_of("cells = 3\n" + minimal()), "bad.toml:1: cells: expected a table, got an integer");
+  EXPECT_EQ(error_of(minimal("[cells]\nshape = \"cube\"\n")),
+            "bad.toml:5: cells.shape: \"cube\" is not allowed (allowed: \"rbc\", \"sphere\", \"ellipsoid\")");
+  EXPECT_TRUE(contains(error_of(minimal("[output]\nformats = [\"xdmf\", \"png\"]\n")), "output.formats"));
+  EXPECT_TRUE(contains(error_of(minimal("[output]\nformats = [\"vtk\", \"vtk\"]\n")), "listed twice"));
+}
+
+TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
+  EXPECT_EQ(error_of(minimal("[cells]\norder = 3\n")),
+            "bad.toml:5: cells.order: 3 is out of range (allowed: integers 4..128)");
+  EXPECT_EQ(error_of(minimal("[cells]\norder = 129\n")),
+            "bad.toml:5: cells.order: 129 is out of range (allowed: integers 4..128)");
+  EXPECT_EQ(error_of(minimal("[cells]\ndealias = 0\n")),
+            "bad.toml:5: cells.dealias: 0 is out of range (allowed: integers 1..4)");
+  EXPECT_EQ(error_of("[domain]\nbox = [10, -1, 10]\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:2: domain.box: -1 is out of range (allowed: 0 < x)");
+  EXPECT_EQ(error_of("[domain]\nbox = [10, 0, 10]\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:2: domain.box: 0 is out of range (allowed: 0 < x)");
+  EXPECT_EQ(error_of("[domain]\nbox = [10, nan, 10]\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:2: domain.box: nan is out of range (allowed: 0 < x)");
+  EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 12\n")),
+            "bad.toml:5: vessel.diameter: 12 is out of range (allowed: 0 < x < 10)");
+  EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 4\nelement_size = 0\n")),
+            "bad.toml:6: vessel.element_size: 0 is out of range (allowed: 0 < x <= 2)");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"constriction\"\ndiameter = 3.5\ndepth = 3.5\nwidth = 1\n")),
+            "bad.toml:7: vessel.depth: 3.5 is out of range (allowed: 0 < x < 3.5)");
+  EXPECT_EQ(error_of(minimal("[time]\nend = -1\n")), "bad.toml:5: time.end: -1 is out of range (allowed: 0 < x)");
+  EXPECT_EQ(error_of(minimal("[time]\nend = 1\ndt = 2\n")),
+            "bad.toml:6: time.dt: 2 is out of range (allowed: 0 < x <= 1)");
+  EXPECT_EQ(error_of(minimal("[cells.membrane]\nshear_modulus = 0\n")),
+            "bad.toml:5: cells.membrane.shear_modulus: 0 is out of range (allowed: 0 < x)");
+  EXPECT_EQ(error_of(minimal("[ewald]\ncutoff = 6\n")),
+            "bad.toml:5: ewald.cutoff: 6 is out of range (allowed: 0 < x <= 5)");
+  EXPECT_EQ(error_of(minimal("[output]\nevery = 0\n")),
+            "bad.toml:5: output.every: 0 is out of range (allowed: integers 1..2147483647)");
+  EXPECT_EQ(error_of(minimal("[cells]\norder = 99999999999999\n")),
+            "bad.toml:5: cells.order: 99999999999999 is out of range (allowed: integers 4..128)");
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\norder = 8\nperturbation = { l = 8 }\n")),
+                       "cells.perturbation.l: 8 is out of range (allowed: integers 0..7)"));
+}
+
+TEST(Case, InconsistentKeysAreErrors) {
+  EXPECT_EQ(error_of("[domain]\nbox = [1, 1, 1]\n"),
+            "bad.toml:1: [domain]: a periodic domain needs mean_velocity or pressure_gradient "
+            "(mean_velocity = [0, 0, 0] for no imposed flow)");
+  EXPECT_EQ(error_of(minimal("pressure_gradient = [0, 0, 1]\n")),
+            "bad.toml:4: domain.pressure_gradient: give mean_velocity or pressure_gradient, not both");
+  EXPECT_EQ(error_of("[domain]\nmean_velocity = [0, 0, 1]\n"),
+            "bad.toml:1: [domain]: box = [L1, L2, L3] is required for kind = \"periodic\"");
+  EXPECT_TRUE(contains(error_of("title = \"x\"\n"), "missing table [domain]"));
+  EXPECT_TRUE(contains(error_of("[domain]\nkind = \"free\"\nbox = [1, 1, 1]\n"),
+                       "bad.toml:3: domain.box: applies only to kind = \"periodic\""));
+  EXPECT_TRUE(contains(error_of("[domain]\nkind = \"free\"\n[vessel]\ndiameter = 1\n"),
+                       "vessel: a vessel needs [domain] kind = \"periodic\""));
+  EXPECT_EQ(error_of(minimal("[cells]\ncount = 2\nhematocrit = 0.2\n")),
+            "bad.toml:6: cells.hematocrit: give count or hematocrit, not both");
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\nhematocrit = 0.2\n")), "needs a [vessel]"));
+  EXPECT_EQ(error_of(minimal("[cells]\ncount = 3\npositions = [[1, 1, 1], [2, 2, 2]]\n")),
+            "bad.toml:5: cells.count: 3 cells but 2 positions");
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\npositions = [[1, 1, 1]]\norientations = [[0, 0, 0]]\n")),
+                       "orientations[0] is the zero vector"));
+  EXPECT_TRUE(contains(error_of(minimal("[vessel]\nkind = \"constriction\"\ndiameter = 3\n")),
+                       "depth and width are required"));
+  EXPECT_TRUE(contains(error_of(minimal("[time]\ndt = 0.1\ndt_safety = 0.5\n")), "applies only to dt = \"auto\""));
+  EXPECT_TRUE(contains(error_of(minimal("[cells.membrane]\nlaw = \"neo-hookean\"\ndilatation_modulus = 1\n")),
+                       "applies only to law"));
+}
+
+TEST(Case, CellsOutsideTheBoxAreErrors) {
+  EXPECT_EQ(error_of(minimal("[cells]\npositions = [\n  [1, 1, 1],\n  [5, 10, 5],\n]\n")),
+            "bad.toml:5: cells.positions: positions[1] = [5, 10, 5] lies outside the box "
+            "[0, 10) x [0, 10) x [0, 10)");
+  EXPECT_TRUE(contains(error_of(minimal("[cells]\npositions = [[-0.1, 1, 1]]\n")), "lies outside the box"));
+  EXPECT_EQ(error_of(minimal("[cells]\npositions = [\n  [1, 1, 1],\n  [5, 5],\n]\n")),
+            "bad.toml:7: cells.positions[1]: expected an array of 3 numbers, got 2 elements");
+}
+
+TEST(Case, UnreadableFileIsAnError) {
+  try {
+    read_case("/nonexistent/case.toml");
+    FAIL();
+  } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/case.toml: cannot read the case file");
+  }
+}
+
+TEST(Case, CaseErrorNamesTheLineOfALaterCheck) {
+  const Case c = parse_case(minimal("[cells]\npositions = [[1, 1, 1]]\n"), "later.toml");
+  EXPECT_EQ(std::string(case_error(c, "cells.positions", "cells 0 and 1 overlap").what()),
+            "later.toml:5: cells.positions: cells 0 and 1 overlap");
+}
