@@ -7,7 +7,8 @@ function(rbcflow_set_warnings target)
 endfunction()
 
 if(RBCFLOW_SANITIZE)
+  # -UNDEBUG keeps assertions (Eigen's bounds and size checks included) in this build.
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
-                      -fno-sanitize-recover=undefined)
+                      -fno-sanitize-recover=undefined -UNDEBUG)
   add_link_options(-fsanitize=address,undefined)
 endif()
