@@ -1,0 +1,122 @@
+#include "io/case_derived.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "geometry/reference_shapes.h"
+
+namespace rbcflow {
+namespace {
+
+constexpr double kRbcArea = 16.8;  // section 7: the estimated red-cell area used in (37)
+
+// d(s) of a tube or constriction along its axis.
+double local_diameter(const Vessel& v, double s) {
+  if (v.kind != VesselKind::constriction) return v.diameter;
+  return v.diameter - v.depth * std::exp(-v.width * (s - v.center) * (s - v.center));
+}
+
+// Composite Simpson rule over [0, L] of f(s); the constriction's Gaussian is smooth and
+// 4000 intervals put the error far below what any estimate here needs.
+template <typename F>
+double integrate_along(double length, F f) {
+  const int n = 4000;
+  const double h = length / n;
+  double sum = f(0.0) + f(length);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(i * h);
+  return sum * h / 3.0;
+}
+
+bool has_round_vessel(const Case& c) {
+  return c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction);
+}
+
+}  // namespace
+
+ReferenceCell reference_cell(const Cells& cells) {
+  if (cells.shape == CellShape::rbc) return {kRbcArea, 4.0 * std::numbers::pi / 3.0};
+  const SHSurface s = cells.shape == CellShape::sphere
+                          ? make_sphere(cells.order)
+                          : make_ellipsoid(cells.order, Eigen::Vector3d(cells.semi_axes[0], cells.semi_axes[1],
+                                                                        cells.semi_axes[2]));
+  const SurfaceGeometry g = s.geometry(SHTransform::gauss(cells.order));
+  return {surface_area(g), enclosed_volume(g)};
+}
+
+double effective_spacing(const Cells& cells) {
+  return std::sqrt(reference_cell(cells).area) / cells.order;
+}
+
+double time_step_limit(const Cells& cells) {
+  const double h = effective_spacing(cells);
+  const Membrane& m = cells.membrane;
+  const double in_plane = m.law == MembraneLaw::neo_hookean ? m.shear_modulus : m.dilatation_modulus;
+  double limit = 2.5 * std::pow(h, 1.2) / in_plane;  // (37)
+  if (m.bending_modulus > 0) limit = std::min(limit, 0.19 * std::pow(h, 3.2) / m.bending_modulus);
+  return limit;
+}
+
+double time_step(const Case& c) {
+  if (c.time.dt) return *c.time.dt;
+  if (!c.cells) return c.time.end;
+  return std::min(c.time.end, c.time.dt_safety * time_step_limit(*c.cells));
+}
+
+std::optional<double> vessel_volume(const Case& c) {
+  if (!has_round_vessel(c)) return std::nullopt;
+  const Vessel& v = *c.vessel;
+  return integrate_along(c.domain.box[v.axis], [&](double s) {
+    const double d = local_diameter(v, s);
+    return std::numbers::pi * d * d / 4.0;
+  });
+}
+
+std::optional<double> vessel_wall_area(const Case& c) {
+  if (!has_round_vessel(c)) return std::nullopt;
+  const Vessel& v = *c.vessel;
+  return integrate_along(c.domain.box[v.axis], [&](double s) {
+    const double e = 1e-6;  // d'(s) by central differences, plenty for an area estimate
+    const double slope = (local_diameter(v, s + e) - local_diameter(v, s - e)) / (4.0 * e);
+    return std::numbers::pi * local_diameter(v, s) * std::sqrt(1.0 + slope * slope);
+  });
+}
+
+std::optional<int> cell_count(const Case& c) {
+  if (!c.cells) return 0;
+  if (c.cells->count) return *c.cells->count;
+  const auto volume = vessel_volume(c);
+  if (!volume) return std::nullopt;
+  const double n = *c.cells->hematocrit * *volume / reference_cell(*c.cells).volume;
+  return std::max(1, static_cast<int>(std::lround(n)));
+}
+
+std::optional<double> tube_hematocrit(const Case& c, int cells) {
+  const auto volume = vessel_volume(c);
+  if (!volume || !c.cells) return std::nullopt;
+  return cells * reference_cell(*c.cells).volume / *volume;
+}
+
+MemoryEstimate memory_estimate(const Case& c, int cells) {
+  MemoryEstimate m;
+  constexpr double kDouble = sizeof(double);
+  if (c.cells) {
+    const double n = c.cells->order, big = n * c.cells->dealias;
+    const double grid = 2 * n * n, fine = 2 * big * big;
+    const double patches = grid * (n / 2) * (n / 2) * 3;  // 3 weights per patch point
+    m.cells = cells * kDouble * (48 * (grid + fine) + patches);
+  }
+  if (const auto area = vessel_wall_area(c)) {
+    const double h = c.vessel->element_size;
+    const double triangles = *area / (std::sqrt(3.0) / 4.0 * h * h);
+    m.wall_nodes = static_cast<int>(std::lround(triangles / 2));
+    m.wall = kDouble * 200.0 * *m.wall_nodes;
+  }
+  if (c.ewald.grid) {
+    const auto& g = *c.ewald.grid;
+    m.ewald = kDouble * 6.0 * g[0] * g[1] * g[2];
+  }
+  return m;
+}
+
+}  // namespace rbcflow

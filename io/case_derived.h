@@ -1,0 +1,51 @@
+#pragma once
+// Parameters derived from a case before a run: what `rbcflow check` prints and what a run
+// uses for dt = "auto". No solver needed; the Ewald parameters are the solver's to choose.
+#include <optional>
+
+#include "io/case.h"
+
+namespace rbcflow {
+
+// The reference cell: area A and volume V. For "rbc" A = 16.8, the paper's estimate used in
+// (37); other shapes are measured on their spherical-harmonic surface of the case's order.
+struct ReferenceCell {
+  double area = 0;
+  double volume = 0;
+};
+ReferenceCell reference_cell(const Cells& cells);
+
+// h_eff = sqrt(A) / N and the explicit stability limit (37):
+// dt < min(2.5 h^1.2 / E_D, 0.19 h^3.2 / E_B) (the E_B term is absent for E_B = 0; the
+// neo-Hookean law, which has no E_D, uses E_S in its place).
+double effective_spacing(const Cells& cells);
+double time_step_limit(const Cells& cells);
+// The step a run takes: time.dt, or dt_safety times (37); with no cells and dt = "auto",
+// time.end (a single step of the quasi-steady wall flow).
+double time_step(const Case& c);
+
+// Volume and wall area of a tube or constriction over one period of the box; empty for
+// other vessels (known once meshed).
+std::optional<double> vessel_volume(const Case& c);
+std::optional<double> vessel_wall_area(const Case& c);
+
+// The number of cells: count, or hematocrit x vessel volume / cell volume (rounded, at least
+// 1); empty when the vessel volume is not known before meshing.
+std::optional<int> cell_count(const Case& c);
+// Tube hematocrit of that many cells; empty without a tube or constriction.
+std::optional<double> tube_hematocrit(const Case& c, int cells);
+
+// A rough memory model (bytes), documented in docs/case-format.md: per cell 48 doubles on
+// each point of the N x 2N and M x 2M grids plus near-singular patches of (N/2)^2 points
+// per grid point; the wall 200 doubles per node; the Ewald grid (when given) 6 arrays of
+// grid size.
+struct MemoryEstimate {
+  double cells = 0;
+  double wall = 0;
+  double ewald = 0;
+  std::optional<int> wall_nodes;
+  double total() const { return cells + wall + ewald; }
+};
+MemoryEstimate memory_estimate(const Case& c, int cells);
+
+}  // namespace rbcflow
