@@ -29,5 +29,6 @@ class Args {
 
 int run_info(Args& args);
 int run_shape(Args& args);
+int run_check(Args& args);
 
 }  // namespace rbcflow::cli

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "io/input_error.h"
 
 namespace {
 
@@ -13,6 +14,7 @@ void print_usage() {
   std::printf(
       "usage: rbcflow COMMAND [ARGS]\n"
       "commands:\n"
+      "  check CASE.toml      validate a case; print derived parameters\n"
       "  info                 version, libraries, threads\n"
       "  shape NAME -o F.vtp  export a reference cell shape (rbc, sphere, ellipsoid, ...)\n"
       "Run 'rbcflow COMMAND --help' for the arguments of a command.\n");
@@ -31,11 +33,15 @@ int main(int argc, char** argv) {
   try {
     if (command == "info") return run_info(args);
     if (command == "shape") return run_shape(args);
+    if (command == "check") return run_check(args);
     std::fprintf(stderr, "rbcflow: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;
   } catch (const UsageError& e) {
     std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const rbcflow::InputError& e) {
+    std::fprintf(stderr, "rbcflow %s: %s\n", command.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rbcflow %s: error: %s\n", command.c_str(), e.what());

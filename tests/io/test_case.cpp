@@ -353,3 +353,19 @@ TEST(Case, CaseErrorNamesTheLineOfALaterCheck) {
   EXPECT_EQ(std::string(case_error(c, "cells.positions", "cells 0 and 1 overlap").what()),
             "later.toml:5: cells.positions: cells 0 and 1 overlap");
 }
+
+TEST(Case, EveryExampleCaseReadsAndRoundTrips) {
+  int cases = 0;
+  const fs::path out = fs::temp_directory_path() / "rbcflow_test_examples";
+  fs::create_directories(out);
+  for (const auto& entry : fs::directory_iterator(RBCFLOW_CASES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Case c = read_case(entry.path());
+    write_case_toml(c, out / "case.toml");
+    EXPECT_EQ(read_case(out / "case.toml"), c);
+    ++cases;
+  }
+  EXPECT_GE(cases, 7);
+  fs::remove_all(out);
+}
