@@ -1,0 +1,97 @@
+#pragma once
+// diagnostics.csv and cells.csv (CASE_FORMAT.md): the contract's columns in order, one row
+// per step and one row per cell per frame, appended and flushed as written so that a crash
+// loses at most the row being written. Empty fields where a value does not apply.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/case.h"
+
+namespace rbcflow {
+
+struct DiagnosticsRow {
+  long step = 0;
+  double time = 0;
+  double dt = 0;
+  Vec3 mean_velocity{};
+  Vec3 pressure_gradient{};
+  std::optional<double> effective_viscosity;  // (46) with (45); empty without a tube
+  std::optional<double> tube_hematocrit;      // empty without a tube
+  double max_volume_error = 0;                // relative to each cell's initial volume
+  double max_area_error = 0;
+  int gmres_cells = 0;
+  std::optional<int> gmres_wall;        // empty without a wall
+  std::optional<double> wall_residual;  // empty without a wall
+  double seconds = 0;                   // wall-clock time of the step
+};
+
+struct CellRow {
+  long step = 0;
+  double time = 0;
+  int cell = 0;
+  Vec3 centroid{};
+  Vec3 velocity{};  // area-weighted mean surface velocity
+  double volume = 0;
+  double area = 0;
+  double taylor_deformation = 0;  // (L - B) / (L + B) of the inertia ellipsoid
+  double inclination = 0;         // long axis to the flow direction, radians
+};
+
+const std::vector<std::string>& diagnostics_columns();
+const std::vector<std::string>& cells_columns();
+
+// A CSV file written row by row. A new file starts with the header. On a restart from step
+// S (resume_step = S), an existing file keeps its rows with step <= S (a run that went past
+// its last checkpoint leaves later rows; they are dropped) and new rows are appended; its
+// header must be `columns`.
+class CsvWriter {
+ public:
+  CsvWriter(std::filesystem::path path, std::vector<std::string> columns,
+            std::optional<long> resume_step = std::nullopt);
+  // One row: as many fields as columns; each field already formatted (may be empty).
+  void write(const std::vector<std::string>& fields);
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::size_t columns_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+};
+
+class DiagnosticsCsv {
+ public:
+  explicit DiagnosticsCsv(const std::filesystem::path& path, std::optional<long> resume_step = std::nullopt);
+  void write(const DiagnosticsRow& row);
+
+ private:
+  CsvWriter csv_;
+};
+
+class CellsCsv {
+ public:
+  explicit CellsCsv(const std::filesystem::path& path, std::optional<long> resume_step = std::nullopt);
+  void write(const std::vector<CellRow>& frame);  // one row per cell
+
+ private:
+  CsvWriter csv_;
+};
+
+// A CSV file read back: the header and the rows as text (for plots and tests).
+struct CsvTable {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+  // Index of a column; throws std::runtime_error naming the file when it is absent.
+  std::size_t column(const std::string& name) const;
+  std::filesystem::path path;
+};
+CsvTable read_csv(const std::filesystem::path& path);
+
+// The shortest text that reads back as the same double (empty for an empty optional).
+std::string csv_number(double x);
+std::string csv_number(const std::optional<double>& x);
+
+}  // namespace rbcflow
