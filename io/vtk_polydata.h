@@ -6,14 +6,9 @@
 #include <vector>
 
 #include "geometry/triangle_mesh.h"
+#include "io/surface.h"
 
 namespace rbcflow {
-
-// A named field on the points of a mesh: one row per point, 1 (scalar) or 3 (vector) columns.
-struct PointField {
-  std::string name;
-  Eigen::MatrixXd values;
-};
 
 // Writes `mesh` and its point fields as a binary, compressed .vtp file (atomically).
 void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,

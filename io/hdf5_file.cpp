@@ -1,0 +1,227 @@
+#include "io/hdf5_file.h"
+
+#include <stdexcept>
+
+namespace rbcflow::h5 {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw std::runtime_error("HDF5: " + what); }
+
+hid_t checked(hid_t id, const std::string& what) {
+  if (id < 0) fail(what);
+  return id;
+}
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) fail(what);
+}
+
+Id dataspace(const std::vector<hsize_t>& dims) {
+  return Id(checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"), H5Sclose);
+}
+
+template <typename T>
+void write_rows(hid_t loc, const std::string& name, const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& m,
+                hid_t file_type, hid_t memory_type, bool one_column_as_vector) {
+  const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
+  std::vector<hsize_t> dims{static_cast<hsize_t>(m.rows())};
+  if (!(one_column_as_vector && m.cols() == 1)) dims.push_back(static_cast<hsize_t>(m.cols()));
+  const Id space = dataspace(dims);
+  const Id set(checked(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                     "cannot create dataset " + name),
+               H5Dclose);
+  if (m.size() > 0) {
+    check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), "cannot write " + name);
+  }
+}
+
+template <typename T>
+Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic> read_rows(hid_t loc, const std::string& name, hid_t memory_type) {
+  const std::vector<hsize_t> dims = shape(loc, name);
+  if (dims.empty() || dims.size() > 2) fail("dataset " + name + " is not a vector or a matrix");
+  const Eigen::Index rows = static_cast<Eigen::Index>(dims[0]);
+  const Eigen::Index cols = dims.size() == 2 ? static_cast<Eigen::Index>(dims[1]) : 1;
+  Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(rows, cols);
+  const Id set(checked(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose);
+  if (m.size() > 0) {
+    check(H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()), "cannot read " + name);
+  }
+  return m;
+}
+
+Id scalar_attribute(hid_t obj, const std::string& name, hid_t type) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  const Id space(checked(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  return Id(checked(H5Acreate2(obj, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                  "cannot create attribute " + name),
+            H5Aclose);
+}
+
+Id open_attribute(hid_t obj, const std::string& name) {
+  return Id(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute " + name), H5Aclose);
+}
+
+}  // namespace
+
+Id& Id::operator=(Id&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    close_ = o.close_;
+    o.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+void Id::reset() {
+  if (id_ >= 0 && close_) close_(id_);
+  id_ = H5I_INVALID_HID;
+}
+
+QuietErrors::QuietErrors() {
+  H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+Id create_file(const std::filesystem::path& path) {
+  return Id(checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create " + path.string()),
+            H5Fclose);
+}
+
+Id open_file(const std::filesystem::path& path, bool writable) {
+  return Id(checked(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
+                  "cannot open " + path.string()),
+            H5Fclose);
+}
+
+void flush(hid_t file) { check(H5Fflush(file, H5F_SCOPE_GLOBAL), "cannot flush the file"); }
+
+Id create_group(hid_t loc, const std::string& name) {
+  const Id gcpl(checked(H5Pcreate(H5P_GROUP_CREATE), "property list"), H5Pclose);
+  H5Pset_link_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  return Id(checked(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), "cannot create group " + name),
+            H5Gclose);
+}
+
+Id open_group(hid_t loc, const std::string& name) {
+  return Id(checked(H5Gopen2(loc, name.c_str(), H5P_DEFAULT), "no group " + name), H5Gclose);
+}
+
+bool exists(hid_t loc, const std::string& path) {
+  std::string prefix;
+  std::string::size_type start = 0;
+  while (start <= path.size()) {
+    const auto slash = path.find('/', start);
+    prefix.append(prefix.empty() ? "" : "/").append(path.substr(start, slash - start));
+    if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+    if (slash == std::string::npos) return true;
+    start = slash + 1;
+  }
+  return true;
+}
+
+std::vector<std::string> children(hid_t group) {
+  H5G_info_t info;
+  check(H5Gget_info(group, &info), "cannot list a group");
+  // Groups made by create_group index their creation order; others list by name.
+  const Id gcpl(H5Gget_create_plist(group), H5Pclose);
+  unsigned flags = 0;
+  H5Pget_link_creation_order(gcpl.get(), &flags);
+  const H5_index_t index = (flags & H5P_CRT_ORDER_INDEXED) ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME;
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t n = H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (n < 0) fail("cannot list a group");
+    std::string name(static_cast<std::size_t>(n), '\0');
+    H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, name.data(), name.size() + 1, H5P_DEFAULT);
+    names.push_back(name);
+  }
+  return names;
+}
+
+void remove(hid_t loc, const std::string& name) {
+  check(H5Ldelete(loc, name.c_str(), H5P_DEFAULT), "cannot remove " + name);
+}
+
+void soft_link(hid_t loc, const std::string& name, const std::string& target_path) {
+  check(H5Lcreate_soft(target_path.c_str(), loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+        "cannot link " + name + " to " + target_path);
+}
+
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector) {
+  write_rows<double>(loc, name, m, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, one_column_as_vector);
+}
+
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m) {
+  write_rows<int>(loc, name, m, H5T_STD_I32LE, H5T_NATIVE_INT, false);
+}
+
+Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name) {
+  return read_rows<double>(loc, name, H5T_NATIVE_DOUBLE);
+}
+
+Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name) {
+  return read_rows<int>(loc, name, H5T_NATIVE_INT);
+}
+
+std::vector<hsize_t> shape(hid_t loc, const std::string& name) {
+  const Id set(checked(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose);
+  const Id space(checked(H5Dget_space(set.get()), "no dataspace of " + name), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) fail("no dataspace of " + name);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims;
+}
+
+void write_attribute(hid_t obj, const std::string& name, double value) {
+  const Id a = scalar_attribute(obj, name, H5T_IEEE_F64LE);
+  check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value), "cannot write attribute " + name);
+}
+
+void write_attribute(hid_t obj, const std::string& name, long long value) {
+  const Id a = scalar_attribute(obj, name, H5T_STD_I64LE);
+  check(H5Awrite(a.get(), H5T_NATIVE_LLONG, &value), "cannot write attribute " + name);
+}
+
+void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
+  const Id type(checked(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1));
+  const Id a = scalar_attribute(obj, name, type.get());
+  std::string padded = value;
+  padded.resize(std::max<std::size_t>(value.size(), 1), '\0');
+  check(H5Awrite(a.get(), type.get(), padded.data()), "cannot write attribute " + name);
+}
+
+bool has_attribute(hid_t obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+
+double read_double_attribute(hid_t obj, const std::string& name) {
+  const Id a = open_attribute(obj, name);
+  double v = 0;
+  check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v), "cannot read attribute " + name);
+  return v;
+}
+
+long long read_int_attribute(hid_t obj, const std::string& name) {
+  const Id a = open_attribute(obj, name);
+  const Id type(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_INTEGER) fail("attribute " + name + " is not an integer");
+  long long v = 0;
+  check(H5Aread(a.get(), H5T_NATIVE_LLONG, &v), "cannot read attribute " + name);
+  return v;
+}
+
+std::string read_string_attribute(hid_t obj, const std::string& name) {
+  const Id a = open_attribute(obj, name);
+  const Id type(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
+    fail("attribute " + name + " is not a fixed-length string");
+  }
+  std::string v(H5Tget_size(type.get()), '\0');
+  check(H5Aread(a.get(), type.get(), v.data()), "cannot read attribute " + name);
+  return v.substr(0, v.find('\0'));
+}
+
+}  // namespace rbcflow::h5

@@ -1,0 +1,73 @@
+#pragma once
+// A thin C++ layer over the HDF5 C API for io/ (the XDMF writer and checkpoints): owned
+// handles, row-major matrices, attributes. Errors throw std::runtime_error naming the object;
+// HDF5's own error printing is off while a QuietErrors lives.
+#include <hdf5.h>
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rbcflow::h5 {
+
+// An HDF5 identifier closed by its matching H5*close on destruction.
+class Id {
+ public:
+  Id() = default;
+  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Id() { reset(); }
+  Id(Id&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
+  Id& operator=(Id&& o) noexcept;
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  hid_t get() const { return id_; }
+  void reset();
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+class QuietErrors {
+ public:
+  QuietErrors();
+  ~QuietErrors();
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+Id create_file(const std::filesystem::path& path);  // truncates
+Id open_file(const std::filesystem::path& path, bool writable);
+void flush(hid_t file);
+
+// Groups track the creation order of their links, and children() lists them in that order.
+Id create_group(hid_t loc, const std::string& name);
+Id open_group(hid_t loc, const std::string& name);
+bool exists(hid_t loc, const std::string& path);  // every component of a '/' path
+std::vector<std::string> children(hid_t group);
+void remove(hid_t loc, const std::string& name);
+void soft_link(hid_t loc, const std::string& name, const std::string& target_path);
+
+// Matrices are stored row-major (rows x cols); a matrix with one column is stored 1-D when
+// `one_column_as_vector` (XDMF scalars). read_* accepts either.
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector = false);
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m);
+Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name);
+Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name);
+// Dimensions of a dataset.
+std::vector<hsize_t> shape(hid_t loc, const std::string& name);
+
+void write_attribute(hid_t obj, const std::string& name, double value);
+void write_attribute(hid_t obj, const std::string& name, long long value);
+void write_attribute(hid_t obj, const std::string& name, const std::string& value);
+bool has_attribute(hid_t obj, const std::string& name);
+double read_double_attribute(hid_t obj, const std::string& name);
+long long read_int_attribute(hid_t obj, const std::string& name);
+std::string read_string_attribute(hid_t obj, const std::string& name);
+
+}  // namespace rbcflow::h5

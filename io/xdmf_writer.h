@@ -1,0 +1,72 @@
+#pragma once
+// XDMF 3 time series over one HDF5 file: DIR/rbcflow.h5 holds the data, DIR/rbcflow.xdmf the
+// XML that ParaView opens (Xdmf3 reader). The only code in rbcflow that writes XML for XDMF.
+//
+// Layout of the HDF5 file: /frames/NNNNNNNN (the step, 8 digits; attributes `step`, `time`)
+// holds one group per surface with datasets `points` (n x 3), `triangles` (t x 3, int32) and
+// one dataset per point field (n, n x 3 or n x k). Points and triangles equal to those of
+// the surface's previous frame are soft links to them (the wall, the cells' connectivity).
+// The XML: a temporal collection of spatial collections, one uniform grid per surface,
+// dataset paths relative to the .xdmf file.
+//
+// A crash leaves a readable series: after each frame the HDF5 file is flushed and the XML,
+// which lists only complete frames, is replaced atomically.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_file.h"
+#include "io/surface.h"
+
+namespace rbcflow {
+
+class XdmfWriter {
+ public:
+  // Starts DIR/STEM.h5 and DIR/STEM.xdmf afresh; or, with `resume_step`, continues them after
+  // that step (later frames, left by a run that went past its last checkpoint, are dropped).
+  explicit XdmfWriter(const std::filesystem::path& dir, std::optional<long> resume_step = std::nullopt,
+                      const std::string& stem = "rbcflow");
+
+  // Writes one frame; steps must increase.
+  void write_frame(long step, double time, const std::vector<Surface>& surfaces);
+
+  int frames() const { return static_cast<int>(frames_.size()); }
+  const std::filesystem::path& xdmf_path() const { return xdmf_path_; }
+  const std::filesystem::path& h5_path() const { return h5_path_; }
+
+ private:
+  struct FieldRecord {
+    std::string name;
+    long long columns;
+  };
+  struct SurfaceRecord {
+    std::string name;
+    long long points = 0, triangles = 0;
+    std::vector<FieldRecord> fields;
+  };
+  struct FrameRecord {
+    long step = 0;
+    double time = 0;
+    std::vector<SurfaceRecord> surfaces;
+  };
+  // The last points and triangles written for a surface, and where.
+  struct LastMesh {
+    TriangleMesh mesh;
+    std::string points_path, triangles_path;
+  };
+
+  void resume(long step);
+  void write_xml() const;
+
+  std::filesystem::path h5_path_, xdmf_path_;
+  h5::Id file_;
+  std::vector<FrameRecord> frames_;
+  std::map<std::string, LastMesh> last_;
+};
+
+// "00000100": the zero-padded step used in HDF5 groups and file names.
+std::string step_label(long step);
+
+}  // namespace rbcflow
