@@ -7,6 +7,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -56,17 +57,24 @@ void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
   });
 }
 
-TriangleMesh read_vtp(const std::filesystem::path& path) {
+namespace {
+
+// The reader's output; throws naming the file when it is not PolyData with points.
+vtkSmartPointer<vtkPolyData> read_polydata(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw std::runtime_error("cannot read " + path.string() + ": no such file");
   }
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(path.c_str());
   reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
+  vtkSmartPointer<vtkPolyData> poly = reader->GetOutput();
   if (!poly || poly->GetNumberOfPoints() == 0) {
     throw std::runtime_error("cannot read " + path.string() + ": not a VTK PolyData file with points");
   }
+  return poly;
+}
+
+TriangleMesh mesh_of(vtkPolyData* poly, const std::filesystem::path& path) {
   TriangleMesh mesh;
   mesh.points.resize(poly->GetNumberOfPoints(), 3);
   for (vtkIdType p = 0; p < poly->GetNumberOfPoints(); ++p) {
@@ -86,6 +94,26 @@ TriangleMesh read_vtp(const std::filesystem::path& path) {
     mesh.triangles.row(t) << ids->GetId(0), ids->GetId(1), ids->GetId(2);
   }
   return mesh;
+}
+
+}  // namespace
+
+TriangleMesh read_vtp(const std::filesystem::path& path) { return mesh_of(read_polydata(path), path); }
+
+Surface read_vtp_surface(const std::filesystem::path& path, const std::string& name) {
+  const vtkSmartPointer<vtkPolyData> poly = read_polydata(path);
+  Surface s{name, mesh_of(poly, path), {}};
+  vtkPointData* data = poly->GetPointData();
+  for (int a = 0; a < data->GetNumberOfArrays(); ++a) {
+    vtkDataArray* array = data->GetArray(a);
+    if (!array || !array->GetName()) continue;
+    Eigen::MatrixXd values(array->GetNumberOfTuples(), array->GetNumberOfComponents());
+    for (vtkIdType p = 0; p < array->GetNumberOfTuples(); ++p) {
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c) values(p, c) = array->GetComponent(p, c);
+    }
+    s.fields.push_back({array->GetName(), values});
+  }
+  return s;
 }
 
 }  // namespace rbcflow

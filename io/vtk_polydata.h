@@ -16,5 +16,7 @@ void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
 
 // Reads the points and triangles of a .vtp file (non-triangle cells are an error).
 TriangleMesh read_vtp(const std::filesystem::path& path);
+// The same with every point-data array, as a surface called `name`.
+Surface read_vtp_surface(const std::filesystem::path& path, const std::string& name);
 
 }  // namespace rbcflow

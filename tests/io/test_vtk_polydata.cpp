@@ -44,3 +44,20 @@ TEST(VtkPolyData, MissingFileAndMissingDirectoryAreClearErrors) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir"), std::string::npos) << e.what();
   }
 }
+
+TEST(VtkPolyData, SurfaceReadsBackWithItsPointData) {
+  const TriangleMesh mesh = make_sphere(4).triangulate(SHTransform::gauss(4));
+  const auto path = std::filesystem::temp_directory_path() / "rbcflow_test_surface.vtp";
+  Eigen::MatrixXd v(mesh.num_points(), 3);
+  v.setRandom();
+  write_vtp(path, mesh, {{"velocity", v}, {"J_S", Eigen::MatrixXd::Constant(mesh.num_points(), 1, 1.5)}});
+  const Surface s = read_vtp_surface(path, "cells");
+  EXPECT_EQ(s.name, "cells");
+  EXPECT_EQ(s.mesh.triangles, mesh.triangles);
+  ASSERT_EQ(s.fields.size(), 2u);
+  EXPECT_EQ(s.fields[0].name, "velocity");
+  EXPECT_EQ((s.fields[0].values - v).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(s.fields[1].name, "J_S");
+  EXPECT_EQ(s.fields[1].values.cols(), 1);
+  std::filesystem::remove(path);
+}
