@@ -176,6 +176,103 @@ std::vector<hsize_t> shape(hid_t loc, const std::string& name) {
   return dims;
 }
 
+namespace {
+
+Id scalar_dataset(hid_t loc, const std::string& name, hid_t type) {
+  const Id space(checked(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  return Id(checked(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                    "cannot create dataset " + name),
+            H5Dclose);
+}
+
+Id open_dataset(hid_t loc, const std::string& name) {
+  return Id(checked(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose);
+}
+
+Id string_type(std::size_t size) {
+  Id type(checked(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  H5Tset_size(type.get(), std::max<std::size_t>(size, 1));
+  return type;
+}
+
+herr_t collect_dataset(hid_t, const char* name, const H5O_info_t* info, void* out) {
+  if (info->type == H5O_TYPE_DATASET) static_cast<std::vector<std::string>*>(out)->push_back(name);
+  return 0;
+}
+
+}  // namespace
+
+void write_scalar(hid_t loc, const std::string& name, double value) {
+  const Id set = scalar_dataset(loc, name, H5T_IEEE_F64LE);
+  check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "cannot write " + name);
+}
+
+void write_scalar(hid_t loc, const std::string& name, long long value) {
+  const Id set = scalar_dataset(loc, name, H5T_STD_I64LE);
+  check(H5Dwrite(set.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "cannot write " + name);
+}
+
+void write_scalar(hid_t loc, const std::string& name, const std::string& value) {
+  const Id type = string_type(value.size());
+  const Id set = scalar_dataset(loc, name, type.get());
+  std::string padded = value;
+  padded.resize(std::max<std::size_t>(value.size(), 1), '\0');
+  check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()), "cannot write " + name);
+}
+
+double read_real(hid_t loc, const std::string& name) {
+  const Id set = open_dataset(loc, name);
+  double v = 0;
+  check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v), "cannot read " + name);
+  return v;
+}
+
+long long read_integer(hid_t loc, const std::string& name) {
+  const Id set = open_dataset(loc, name);
+  long long v = 0;
+  check(H5Dread(set.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v), "cannot read " + name);
+  return v;
+}
+
+std::string read_text(hid_t loc, const std::string& name) {
+  const Id set = open_dataset(loc, name);
+  const Id type(checked(H5Dget_type(set.get()), "no type of " + name), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
+    fail("dataset " + name + " is not a fixed-length string");
+  }
+  std::string v(H5Tget_size(type.get()), '\0');
+  check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "cannot read " + name);
+  return v.substr(0, v.find('\0'));
+}
+
+DatasetInfo dataset_info(hid_t loc, const std::string& name) {
+  const Id set = open_dataset(loc, name);
+  const Id type(checked(H5Dget_type(set.get()), "no type of " + name), H5Tclose);
+  const Id space(checked(H5Dget_space(set.get()), "no dataspace of " + name), H5Sclose);
+  DatasetInfo info;
+  info.rank = H5Sget_simple_extent_ndims(space.get());
+  switch (H5Tget_class(type.get())) {
+    case H5T_FLOAT: info.kind = Kind::real; break;
+    case H5T_INTEGER: info.kind = Kind::integer; break;
+    case H5T_STRING: info.kind = Kind::text; break;
+    default: info.kind = Kind::other;
+  }
+  return info;
+}
+
+std::vector<std::string> all_datasets(hid_t loc) {
+  std::vector<std::string> names;
+  check(H5Ovisit(loc, H5_INDEX_NAME, H5_ITER_INC, collect_dataset, &names), "cannot list the datasets");
+  return names;
+}
+
+void create_parents(hid_t loc, const std::string& name) {
+  for (auto slash = name.find('/'); slash != std::string::npos; slash = name.find('/', slash + 1)) {
+    const std::string group = name.substr(0, slash);
+    if (H5Lexists(loc, group.c_str(), H5P_DEFAULT) <= 0) create_group(loc, group);
+  }
+}
+
 void write_attribute(hid_t obj, const std::string& name, double value) {
   const Id a = scalar_attribute(obj, name, H5T_IEEE_F64LE);
   check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value), "cannot write attribute " + name);
@@ -187,8 +284,7 @@ void write_attribute(hid_t obj, const std::string& name, long long value) {
 }
 
 void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
-  const Id type(checked(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-  H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1));
+  const Id type = string_type(value.size());
   const Id a = scalar_attribute(obj, name, type.get());
   std::string padded = value;
   padded.resize(std::max<std::size_t>(value.size(), 1), '\0');

@@ -62,6 +62,26 @@ Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name);
 // Dimensions of a dataset.
 std::vector<hsize_t> shape(hid_t loc, const std::string& name);
 
+// Scalar datasets.
+void write_scalar(hid_t loc, const std::string& name, double value);
+void write_scalar(hid_t loc, const std::string& name, long long value);
+void write_scalar(hid_t loc, const std::string& name, const std::string& value);
+double read_real(hid_t loc, const std::string& name);
+long long read_integer(hid_t loc, const std::string& name);
+std::string read_text(hid_t loc, const std::string& name);
+
+// What a dataset holds: its type class and rank (0 for a scalar).
+enum class Kind { real, integer, text, other };
+struct DatasetInfo {
+  Kind kind = Kind::other;
+  int rank = 0;
+};
+DatasetInfo dataset_info(hid_t loc, const std::string& name);
+// Paths of all datasets below `loc`, depth first ("a/b/c").
+std::vector<std::string> all_datasets(hid_t loc);
+// Creates the groups of the parent path of `name` ("a/b" for "a/b/c") where missing.
+void create_parents(hid_t loc, const std::string& name);
+
 void write_attribute(hid_t obj, const std::string& name, double value);
 void write_attribute(hid_t obj, const std::string& name, long long value);
 void write_attribute(hid_t obj, const std::string& name, const std::string& value);

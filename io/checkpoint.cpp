@@ -1,0 +1,151 @@
+#include "io/checkpoint.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <stdexcept>
+
+#include "io/atomic_file.h"
+#include "io/hdf5_file.h"
+
+namespace rbcflow {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kFormat = "rbcflow checkpoint";
+constexpr long long kFormatVersion = 1;
+
+// Data reaches the disk before the rename makes it the checkpoint.
+void sync_file(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw std::runtime_error("cannot sync " + path.string());
+  const int status = ::fsync(fd);
+  ::close(fd);
+  if (status != 0) throw std::runtime_error("cannot sync " + path.string());
+}
+
+}  // namespace
+
+CheckpointWriter::CheckpointWriter(std::string case_fingerprint) : fingerprint_(std::move(case_fingerprint)) {}
+
+void CheckpointWriter::add(const std::string& name, Item item) {
+  if (name.empty() || name.front() == '/' || name.back() == '/' || name.find("//") != std::string::npos) {
+    throw std::invalid_argument("checkpoint item name '" + name + "' is not a/b/c");
+  }
+  if (!items_.emplace(name, std::move(item)).second) {
+    throw std::invalid_argument("checkpoint item " + name + " given twice");
+  }
+}
+
+void CheckpointWriter::put(const std::string& name, long long value) { add(name, value); }
+void CheckpointWriter::put(const std::string& name, double value) { add(name, value); }
+void CheckpointWriter::put(const std::string& name, const std::string& value) { add(name, value); }
+
+void CheckpointWriter::write(const fs::path& file) const {
+  const h5::QuietErrors quiet;
+  try {
+    write_atomically(file, [&](const fs::path& tmp) {
+      {
+        const h5::Id f = h5::create_file(tmp);
+        h5::write_attribute(f.get(), "format", std::string(kFormat));
+        h5::write_attribute(f.get(), "format_version", kFormatVersion);
+        h5::write_attribute(f.get(), "case_fingerprint", fingerprint_);
+        for (const auto& [name, item] : items_) {
+          h5::create_parents(f.get(), name);
+          std::visit(
+              [&, &n = name](const auto& v) {
+                using T = std::decay_t<decltype(v)>;
+                if constexpr (std::is_same_v<T, Eigen::MatrixXd> || std::is_same_v<T, Eigen::MatrixXi>) {
+                  h5::write_matrix(f.get(), n, v);
+                } else {
+                  h5::write_scalar(f.get(), n, v);
+                }
+              },
+              item);
+        }
+      }  // closed: everything is in the file
+      sync_file(tmp);
+    });
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
+  }
+}
+
+Checkpoint Checkpoint::read(const fs::path& file, const std::string& case_fingerprint) {
+  const std::string where = "checkpoint " + file.string();
+  if (!fs::is_regular_file(file)) throw CheckpointError(where + ": no such file");
+  const h5::QuietErrors quiet;
+  if (H5Fis_hdf5(file.c_str()) <= 0) {
+    throw CheckpointError(where + ": not an HDF5 file (truncated, or not a checkpoint)");
+  }
+  Checkpoint c;
+  c.file_ = file;
+  try {
+    const h5::Id f = h5::open_file(file, false);
+    if (!h5::has_attribute(f.get(), "format") || h5::read_string_attribute(f.get(), "format") != kFormat) {
+      throw CheckpointError(where + ": an HDF5 file, but not an rbcflow checkpoint");
+    }
+    const long long version = h5::read_int_attribute(f.get(), "format_version");
+    if (version != kFormatVersion) {
+      throw CheckpointError(where + ": format version " + std::to_string(version) + ", this rbcflow reads " +
+                            std::to_string(kFormatVersion));
+    }
+    const std::string fingerprint = h5::read_string_attribute(f.get(), "case_fingerprint");
+    if (fingerprint != case_fingerprint) {
+      throw CheckpointError(where + " was written for another case (case fingerprint " + fingerprint +
+                            ", this case " + case_fingerprint +
+                            "); restart with the case.toml of its output directory");
+    }
+    for (const std::string& name : h5::all_datasets(f.get())) {
+      const h5::DatasetInfo info = h5::dataset_info(f.get(), name);
+      if (info.kind == h5::Kind::real && info.rank == 0) {
+        c.items_.emplace(name, h5::read_real(f.get(), name));
+      } else if (info.kind == h5::Kind::integer && info.rank == 0) {
+        c.items_.emplace(name, h5::read_integer(f.get(), name));
+      } else if (info.kind == h5::Kind::text) {
+        c.items_.emplace(name, h5::read_text(f.get(), name));
+      } else if (info.kind == h5::Kind::real) {
+        c.items_.emplace(name, h5::read_matrix(f.get(), name));
+      } else if (info.kind == h5::Kind::integer) {
+        c.items_.emplace(name, h5::read_int_matrix(f.get(), name));
+      } else {
+        throw CheckpointError(where + ": item " + name + " has an unknown type");
+      }
+    }
+  } catch (const CheckpointError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError(where + ": damaged or truncated (" + e.what() + ")");
+  }
+  return c;
+}
+
+std::vector<std::string> Checkpoint::names() const {
+  std::vector<std::string> n;
+  for (const auto& [name, item] : items_) n.push_back(name);
+  return n;
+}
+
+template <typename T>
+const T& Checkpoint::get(const std::string& name, const char* what) const {
+  const auto it = items_.find(name);
+  if (it == items_.end()) throw CheckpointError("checkpoint " + file_.string() + " has no item " + name);
+  if (!std::holds_alternative<T>(it->second)) {
+    throw CheckpointError("checkpoint " + file_.string() + ": item " + name + " is not " + what);
+  }
+  return std::get<T>(it->second);
+}
+
+const Eigen::MatrixXd& Checkpoint::matrix(const std::string& name) const {
+  return get<Eigen::MatrixXd>(name, "a matrix of reals");
+}
+const Eigen::MatrixXi& Checkpoint::int_matrix(const std::string& name) const {
+  return get<Eigen::MatrixXi>(name, "a matrix of integers");
+}
+long long Checkpoint::integer(const std::string& name) const { return get<long long>(name, "an integer"); }
+double Checkpoint::real(const std::string& name) const { return get<double>(name, "a real"); }
+const std::string& Checkpoint::text(const std::string& name) const { return get<std::string>(name, "a string"); }
+
+}  // namespace rbcflow

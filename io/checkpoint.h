@@ -1,0 +1,81 @@
+#pragma once
+// HDF5 checkpoints: named double and integer matrices, integers, reals and strings in one
+// file, written atomically (a temporary beside the target, synced, then renamed) so that a
+// run killed at any moment leaves the last good checkpoint. Names may contain '/' (groups):
+// "cells/0/coefficients". Every stateful object of the stepper writes its own items.
+//
+// The file carries the case fingerprint (case_fingerprint in io/case.h); a checkpoint of
+// another case is rejected with a clear message.
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "io/input_error.h"
+
+namespace rbcflow {
+
+// A checkpoint that cannot be used: missing, truncated, foreign, or of another case (exit 2).
+struct CheckpointError : InputError {
+  using InputError::InputError;
+};
+
+class CheckpointWriter {
+ public:
+  explicit CheckpointWriter(std::string case_fingerprint);
+
+  // Adds an item; a name given twice is an error (std::invalid_argument). Matrices hold
+  // doubles or ints (any Eigen expression of them).
+  template <typename Derived>
+  void put(const std::string& name, const Eigen::MatrixBase<Derived>& m) {
+    using Scalar = typename Derived::Scalar;
+    static_assert(std::is_same_v<Scalar, double> || std::is_same_v<Scalar, int>,
+                  "checkpoint matrices hold doubles or ints");
+    if constexpr (std::is_same_v<Scalar, double>) {
+      add(name, Eigen::MatrixXd(m));
+    } else {
+      add(name, Eigen::MatrixXi(m));
+    }
+  }
+  void put(const std::string& name, long long value);
+  void put(const std::string& name, double value);
+  void put(const std::string& name, const std::string& value);
+
+  // Writes every item to `file` atomically; throws std::runtime_error naming the file (and
+  // leaves an earlier file there untouched) when it cannot.
+  void write(const std::filesystem::path& file) const;
+
+ private:
+  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
+  void add(const std::string& name, Item item);
+  std::string fingerprint_;
+  std::map<std::string, Item> items_;
+};
+
+class Checkpoint {
+ public:
+  // Reads every item of `file`. Throws CheckpointError when the file is missing, is not an
+  // HDF5 file or is truncated, is not an rbcflow checkpoint, or carries another fingerprint.
+  static Checkpoint read(const std::filesystem::path& file, const std::string& case_fingerprint);
+
+  bool has(const std::string& name) const { return items_.count(name) > 0; }
+  std::vector<std::string> names() const;
+  // The item `name` of that type; CheckpointError naming the file and item otherwise.
+  const Eigen::MatrixXd& matrix(const std::string& name) const;
+  const Eigen::MatrixXi& int_matrix(const std::string& name) const;
+  long long integer(const std::string& name) const;
+  double real(const std::string& name) const;
+  const std::string& text(const std::string& name) const;
+
+ private:
+  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
+  template <typename T>
+  const T& get(const std::string& name, const char* what) const;
+  std::filesystem::path file_;
+  std::map<std::string, Item> items_;
+};
+
+}  // namespace rbcflow
