@@ -32,8 +32,10 @@ endif()
 file(STRINGS ${GMSH_INCLUDE_DIR}/gmsh.h _gmsh_version_line REGEX "define GMSH_API_VERSION \"")
 string(REGEX MATCH "[0-9.]+" GMSH_VERSION "${_gmsh_version_line}")
 
+# RenderingAnnotation: colour bars; Charts/Context: the diagnostics plot (io/plot.cpp).
 find_package(VTK 9.1 QUIET COMPONENTS CommonCore CommonDataModel FiltersCore FiltersSources
-  IOXML IOImage IOGeometry RenderingCore RenderingOpenGL2 RenderingFreeType InteractionStyle)
+  IOXML IOImage IOGeometry RenderingCore RenderingOpenGL2 RenderingFreeType InteractionStyle
+  RenderingAnnotation ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2)
 rbcflow_require(VTK_FOUND libvtk9-dev "VTK 9")
 
 find_package(CGAL 5.5 QUIET)

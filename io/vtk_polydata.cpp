@@ -14,11 +14,11 @@
 #include <stdexcept>
 
 #include "atomic_file.h"
+#include "vtk_internal.h"
 
 namespace rbcflow {
 
-void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<PointField>& fields) {
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<PointField>& fields) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(mesh.num_points());
@@ -30,7 +30,7 @@ void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
     const vtkIdType ids[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
     cells->InsertNextCell(3, ids);
   }
-  vtkNew<vtkPolyData> poly;
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(cells);
   for (const PointField& f : fields) {
@@ -48,6 +48,12 @@ void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
     }
     poly->GetPointData()->AddArray(array);
   }
+  return poly;
+}
+
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::vector<PointField>& fields) {
+  const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, fields);
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(tmp.c_str());
