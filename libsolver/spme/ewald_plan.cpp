@@ -1,0 +1,44 @@
+#include "ewald_plan.h"
+
+#include <chrono>
+
+#include "real_space_sum.h"
+
+namespace rbcflow {
+namespace {
+
+double seconds_between(std::chrono::steady_clock::time_point a,
+                       std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+}  // namespace
+
+EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
+                     const PointField& targets)
+    : neighbors_(grid->box(), grid->parameters().cutoff, sources, targets),
+      smooth_(std::move(grid), sources, targets) {}
+
+EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points)
+    : neighbors_(grid->box(), grid->parameters().cutoff, points, points),
+      smooth_(std::move(grid), points) {}
+
+PointField EwaldPlan::single_layer(const PointField& forces) {
+  PointField u = smooth_.single_layer(forces);
+  const auto start = std::chrono::steady_clock::now();
+  u += real_space_single_layer(neighbors_, xi(), forces);
+  timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
+  timings_.smooth = smooth_.timings();
+  return u;
+}
+
+PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
+  PointField u = smooth_.double_layer(q, normals);
+  const auto start = std::chrono::steady_clock::now();
+  u += real_space_double_layer(neighbors_, xi(), q, normals);
+  timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
+  timings_.smooth = smooth_.timings();
+  return u;
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,54 @@
+#pragma once
+// Periodic single- and double-layer sums by Ewald splitting (section 5): real-space part over
+// a neighbour list (section 5.3) plus smooth part by SPME (section 5.2), for fixed source and
+// target positions. This is the workspace to keep for every product with the same geometry
+// (FFT plans and influence function in the shared SpmeGrid; B-spline stencils, neighbour lists
+// and work arrays here); only the densities change between products.
+//
+// Normalisation (REFERENCES.md sections 1-2), densities with their quadrature weights:
+//   single_layer: u(x_t) = sum_s G^per(x_s - x_t) f_s               (= 8 pi mu u),
+//   double_layer: u_i(x_t) = sum_s T^per_ijk(x_s - x_t) q_s,j n_s,k,
+// G^per and T^per the periodic kernels with the k = 0 mode removed; T^per is the periodic part
+// of eq. (3), whose linear part is double_layer_linear_part(). Source-target pairs at r = 0
+// (a target that is also a source) leave out the real-space term of that pair, which the
+// singular quadrature supplies; their smooth term is included.
+#include <memory>
+
+#include "neighbor_list.h"
+#include "periodic_box.h"
+#include "spme_grid.h"
+#include "spme_plan.h"
+
+namespace rbcflow {
+
+struct EwaldTimings {
+  double real_space = 0.0;
+  SpmeTimings smooth;
+  double total() const {
+    return real_space + smooth.spreading + smooth.fft + smooth.influence + smooth.interpolation;
+  }
+};
+
+class EwaldPlan {
+ public:
+  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
+            const PointField& targets);
+  // Targets are the sources.
+  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points);
+
+  PointField single_layer(const PointField& forces);
+  PointField double_layer(const PointField& q, const PointField& normals);
+
+  const NeighborList& neighbors() const { return neighbors_; }
+  const SpmePlan& smooth() const { return smooth_; }
+  double xi() const { return smooth_.grid().parameters().xi; }
+  // Stage times of the last product.
+  const EwaldTimings& timings() const { return timings_; }
+
+ private:
+  NeighborList neighbors_;
+  SpmePlan smooth_;
+  EwaldTimings timings_;
+};
+
+}  // namespace rbcflow

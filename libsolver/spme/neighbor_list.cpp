@@ -1,0 +1,151 @@
+#include "neighbor_list.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rbcflow {
+namespace {
+
+// The cells: nc_d per direction of side at least cutoff / 2, at most about 4 per source.
+struct CellGrid {
+  std::array<int, 3> n{};       // cells per direction
+  std::array<int, 3> reach{};   // neighbour cells to visit on each side: ceil(cutoff / side)
+  std::array<int, 3> images{};  // lattice vectors n_d in [-images, images]
+  Eigen::Vector3d side;
+
+  CellGrid(const PeriodicBox& box, double cutoff, int n_sources) {
+    const double max_cells = std::max(64.0, 4.0 * n_sources);
+    Eigen::Vector3d count;
+    for (int d = 0; d < 3; ++d) count[d] = std::max(1.0, std::floor(2.0 * box.length(d) / cutoff));
+    const double scale = std::cbrt(std::min(1.0, max_cells / count.prod()));
+    for (int d = 0; d < 3; ++d) {
+      n[d] = std::max(1, static_cast<int>(std::floor(count[d] * scale)));
+      side[d] = box.length(d) / n[d];
+      reach[d] = static_cast<int>(std::ceil(cutoff / side[d]));
+      images[d] = (reach[d] + n[d] - 1) / n[d];  // ceil(reach / n)
+    }
+  }
+
+  int cell_of(const Eigen::Vector3d& x, int d) const {
+    return std::min(n[d] - 1, static_cast<int>(x[d] / side[d]));
+  }
+  int image_id(int n0, int n1, int n2) const {
+    return ((n0 + images[0]) * (2 * images[1] + 1) + (n1 + images[1])) * (2 * images[2] + 1) +
+           (n2 + images[2]);
+  }
+  int image_count() const {
+    return (2 * images[0] + 1) * (2 * images[1] + 1) * (2 * images[2] + 1);
+  }
+};
+
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+}  // namespace
+
+NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointField& sources,
+                           const PointField& targets)
+    : box_(box), cutoff_(cutoff), coincidence_(1e-12 * std::cbrt(box.volume())) {
+  if (!(std::isfinite(cutoff) && cutoff > 0.0))
+    throw std::invalid_argument("neighbour list: the cutoff must be positive, got " +
+                                std::to_string(cutoff));
+  if (cutoff > 16.0 * box.lengths().maxCoeff())
+    throw std::invalid_argument("neighbour list: the cutoff " + std::to_string(cutoff) +
+                                " exceeds 16 box lengths");
+  const int ns = static_cast<int>(sources.rows()), nt = static_cast<int>(targets.rows());
+  const CellGrid cells(box, cutoff, ns);
+  const int n_cells = cells.n[0] * cells.n[1] * cells.n[2];
+
+  // Image table.
+  image_shifts_.resize(3 * static_cast<std::size_t>(cells.image_count()));
+  for (int a = -cells.images[0]; a <= cells.images[0]; ++a)
+    for (int b = -cells.images[1]; b <= cells.images[1]; ++b)
+      for (int c = -cells.images[2]; c <= cells.images[2]; ++c) {
+        double* s = &image_shifts_[3 * static_cast<std::size_t>(cells.image_id(a, b, c))];
+        s[0] = a * box.length(0);
+        s[1] = b * box.length(1);
+        s[2] = c * box.length(2);
+      }
+
+  // Sources sorted by cell (counting sort).
+  std::vector<int> cell(ns);
+  std::vector<Eigen::Vector3d> wrapped(ns);
+  std::vector<int> cell_start(n_cells + 1, 0);
+  for (int s = 0; s < ns; ++s) {
+    wrapped[s] = box.wrap(sources.row(s).transpose());
+    cell[s] =
+        (cells.cell_of(wrapped[s], 0) * cells.n[1] + cells.cell_of(wrapped[s], 1)) * cells.n[2] +
+        cells.cell_of(wrapped[s], 2);
+    ++cell_start[cell[s] + 1];
+  }
+  for (int c = 0; c < n_cells; ++c) cell_start[c + 1] += cell_start[c];
+  order_.resize(ns);
+  sources_.resize(3 * static_cast<std::size_t>(ns));
+  {
+    std::vector<int> next(cell_start.begin(), cell_start.end() - 1);
+    for (int s = 0; s < ns; ++s) {
+      const int i = next[cell[s]]++;
+      order_[i] = s;
+      for (int d = 0; d < 3; ++d) sources_[3 * static_cast<std::size_t>(i) + d] = wrapped[s][d];
+    }
+  }
+  targets_.resize(3 * static_cast<std::size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Vector3d x = box.wrap(targets.row(t).transpose());
+    for (int d = 0; d < 3; ++d) targets_[3 * static_cast<std::size_t>(t) + d] = x[d];
+  }
+
+  // Visits every (source, image) that can lie within the cutoff of target t.
+  const double rc2 = cutoff * cutoff, eps2 = coincidence_ * coincidence_;
+  const auto visit = [&](int t, auto&& emit) {
+    const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
+    const Eigen::Vector3d x(xt[0], xt[1], xt[2]);
+    std::array<int, 3> home{};
+    for (int d = 0; d < 3; ++d) home[d] = cells.cell_of(x, d);
+    for (int o0 = -cells.reach[0]; o0 <= cells.reach[0]; ++o0) {
+      const int u0 = home[0] + o0, n0 = floor_div(u0, cells.n[0]), c0 = u0 - n0 * cells.n[0];
+      for (int o1 = -cells.reach[1]; o1 <= cells.reach[1]; ++o1) {
+        const int u1 = home[1] + o1, n1 = floor_div(u1, cells.n[1]), c1 = u1 - n1 * cells.n[1];
+        for (int o2 = -cells.reach[2]; o2 <= cells.reach[2]; ++o2) {
+          const int u2 = home[2] + o2, n2 = floor_div(u2, cells.n[2]), c2 = u2 - n2 * cells.n[2];
+          const int c = (c0 * cells.n[1] + c1) * cells.n[2] + c2;
+          const int image = cells.image_id(n0, n1, n2);
+          const double* shift = &image_shifts_[3 * static_cast<std::size_t>(image)];
+          for (int i = cell_start[c]; i < cell_start[c + 1]; ++i) {
+            const double* xs = &sources_[3 * static_cast<std::size_t>(i)];
+            const double r0 = xs[0] + shift[0] - xt[0], r1 = xs[1] + shift[1] - xt[1],
+                         r2 = xs[2] + shift[2] - xt[2];
+            const double d2 = r0 * r0 + r1 * r1 + r2 * r2;
+            if (d2 < rc2 && d2 > eps2) emit(i, image);
+          }
+        }
+      }
+    }
+  };
+
+  offsets_.assign(nt + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int t = 0; t < nt; ++t) {
+    std::int64_t count = 0;
+    visit(t, [&](int, int) { ++count; });
+    offsets_[t + 1] = count;
+  }
+  for (int t = 0; t < nt; ++t) offsets_[t + 1] += offsets_[t];
+  pair_source_.resize(offsets_.back());
+  pair_image_.resize(offsets_.back());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int t = 0; t < nt; ++t) {
+    std::int64_t k = offsets_[t];
+    visit(t, [&](int i, int image) {
+      pair_source_[k] = i;
+      pair_image_[k] = static_cast<std::uint16_t>(image);
+      ++k;
+    });
+  }
+}
+
+}  // namespace rbcflow

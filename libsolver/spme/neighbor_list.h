@@ -1,0 +1,60 @@
+#pragma once
+// Source-target pairs closer than a cutoff in a periodic box, found once with cell lists and
+// kept for every product with the same positions (section 5.3). Sources and targets may be
+// different point sets (cells, wall nodes, quadrature points).
+//
+// Images: a pair is (source s, lattice vector n) with r = x_s + n L - x_t, |r| < cutoff; every
+// image inside the cutoff is listed, so cutoffs beyond half a box side are handled exactly.
+// Coincident points: pairs with |r| <= coincidence_distance() (1e-12 V^(1/3)), the r = 0 of a
+// source that is also a target, are left out: the real-space kernel is singular there and the
+// singular quadrature accounts for it (its regular part is ewald_real_stokeslet_self).
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "periodic_box.h"
+
+namespace rbcflow {
+
+class NeighborList {
+ public:
+  // Throws std::invalid_argument for a non-positive cutoff or one beyond 16 box lengths.
+  NeighborList(const PeriodicBox& box, double cutoff, const PointField& sources,
+               const PointField& targets);
+
+  const PeriodicBox& box() const { return box_; }
+  double cutoff() const { return cutoff_; }
+  double coincidence_distance() const { return coincidence_; }
+  int n_sources() const { return static_cast<int>(order_.size()); }
+  int n_targets() const { return static_cast<int>(targets_.size() / 3); }
+  std::int64_t n_pairs() const { return offsets_.back(); }
+
+  // Sources are stored sorted by cell: sorted index i is the caller's source order()[i].
+  const std::vector<int>& order() const { return order_; }
+
+  // Calls f(sorted source index, r) for every pair of target t, r = x_s + n L - x_t.
+  template <class F>
+  void for_each_neighbor(int t, F&& f) const {
+    const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
+    for (std::int64_t i = offsets_[t]; i < offsets_[t + 1]; ++i) {
+      const int s = pair_source_[i];
+      const double* xs = &sources_[3 * static_cast<std::size_t>(s)];
+      const double* shift = &image_shifts_[3 * static_cast<std::size_t>(pair_image_[i])];
+      f(s, Eigen::Vector3d(xs[0] + shift[0] - xt[0], xs[1] + shift[1] - xt[1],
+                           xs[2] + shift[2] - xt[2]));
+    }
+  }
+
+ private:
+  PeriodicBox box_;
+  double cutoff_, coincidence_;
+  std::vector<int> order_;             // sorted -> caller's source index
+  std::vector<double> sources_;        // wrapped source positions, sorted, xyz interleaved
+  std::vector<double> targets_;        // wrapped target positions, xyz interleaved
+  std::vector<double> image_shifts_;   // n L for each image id, xyz interleaved
+  std::vector<std::int64_t> offsets_;  // pairs of target t: [offsets_[t], offsets_[t + 1])
+  std::vector<std::int32_t> pair_source_;
+  std::vector<std::uint16_t> pair_image_;
+};
+
+}  // namespace rbcflow

@@ -1,0 +1,71 @@
+#include "real_space_sum.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "libsolver/kernels/ewald_kernels.h"
+
+namespace rbcflow {
+namespace {
+
+void check_rows(const PointField& field, int n, const char* what) {
+  if (field.rows() != n)
+    throw std::invalid_argument(std::string("real-space Ewald sum: ") + what + " has " +
+                                std::to_string(field.rows()) + " rows for " + std::to_string(n) +
+                                " sources");
+}
+
+// Densities gathered into the neighbour list's sorted source order, `width` numbers per source.
+std::vector<double> sorted_densities(const NeighborList& pairs,
+                                     std::initializer_list<const PointField*> fields) {
+  const int width = 3 * static_cast<int>(fields.size());
+  std::vector<double> out(static_cast<std::size_t>(width) * pairs.n_sources());
+  const std::vector<int>& order = pairs.order();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < pairs.n_sources(); ++i) {
+    double* o = &out[static_cast<std::size_t>(width) * i];
+    for (const PointField* f : fields)
+      for (int d = 0; d < 3; ++d) *o++ = (*f)(order[i], d);
+  }
+  return out;
+}
+
+}  // namespace
+
+PointField real_space_single_layer(const NeighborList& pairs, double xi, const PointField& forces) {
+  check_rows(forces, pairs.n_sources(), "the force field");
+  const std::vector<double> f = sorted_densities(pairs, {&forces});
+  PointField u(pairs.n_targets(), 3);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int t = 0; t < pairs.n_targets(); ++t) {
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
+      const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
+      acc += ewald_real_stokeslet_apply(r, xi, fs);
+    });
+    u.row(t) = acc.transpose();
+  }
+  return u;
+}
+
+PointField real_space_double_layer(const NeighborList& pairs, double xi, const PointField& q,
+                                   const PointField& normals) {
+  check_rows(q, pairs.n_sources(), "the double-layer density");
+  check_rows(normals, pairs.n_sources(), "the normal field");
+  const std::vector<double> qn = sorted_densities(pairs, {&q, &normals});
+  PointField u(pairs.n_targets(), 3);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int t = 0; t < pairs.n_targets(); ++t) {
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
+      const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
+      const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
+      acc += ewald_real_stresslet_apply(r, xi, qs, ns);
+    });
+    u.row(t) = acc.transpose();
+  }
+  return u;
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,163 @@
+#include "spme_grid.h"
+
+#include <omp.h>
+
+#include <complex>
+#include <mutex>
+#include <numbers>
+
+#include "bspline.h"
+#include "geometry/fftw_util.h"
+#include "libsolver/kernels/ewald_kernels.h"
+
+namespace rbcflow {
+namespace {
+
+using Complex = std::complex<double>;
+
+// Plans a `components`-fold interleaved 3-D transform; the caller holds fftw_planner_mutex().
+fftw_plan plan_many(const std::array<int, 3>& n, int components, bool forward, unsigned flags) {
+  const int real_dims[3] = {n[0], n[1], n[2]};
+  const int complex_dims[3] = {n[0], n[1], n[2] / 2 + 1};
+  const std::size_t real_size = static_cast<std::size_t>(n[0]) * n[1] * n[2] * components;
+  const std::size_t complex_size =
+      static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * components;
+  FftwBuffer<double> real(real_size);
+  FftwBuffer<fftw_complex> spectrum(complex_size);
+  fftw_plan p =
+      forward ? fftw_plan_many_dft_r2c(3, real_dims, components, real.data(), real_dims, components,
+                                       1, spectrum.data(), complex_dims, components, 1, flags)
+              : fftw_plan_many_dft_c2r(3, real_dims, components, spectrum.data(), complex_dims,
+                                       components, 1, real.data(), real_dims, components, 1, flags);
+  if (!p) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
+  return p;
+}
+
+}  // namespace
+
+SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning)
+    : box_(box), parameters_(parameters) {
+  validate(parameters, box);
+  const std::array<int, 3>& K = parameters.grid;
+
+  // Wavenumbers and B-spline moduli per direction; the Nyquist index gets k = 0 and is dropped.
+  std::vector<double> modulus[3];
+  for (int d = 0; d < 3; ++d) {
+    const int n = d == 2 ? K[d] / 2 + 1 : K[d];
+    wavenumber_[d].resize(n);
+    for (int m = 0; m < n; ++m) {
+      const int signed_m = m < K[d] / 2 ? m : (m == K[d] / 2 ? 0 : m - K[d]);
+      wavenumber_[d][m] = 2.0 * std::numbers::pi * signed_m / box.length(d);
+    }
+    modulus[d] = bspline_modulus(parameters.order, K[d]);
+  }
+  influence_.assign(complex_points(), 0.0);
+  const double inv_volume = 1.0 / box.volume();
+  const int n3 = K[2] / 2 + 1;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < K[0]; ++i) {
+    for (int j = 0; j < K[1]; ++j) {
+      for (int l = 0; l < n3; ++l) {
+        if (i == K[0] / 2 || j == K[1] / 2 || l == K[2] / 2) continue;  // Nyquist planes
+        const double k2 = wavenumber_[0][i] * wavenumber_[0][i] +
+                          wavenumber_[1][j] * wavenumber_[1][j] +
+                          wavenumber_[2][l] * wavenumber_[2][l];
+        if (k2 == 0.0) continue;  // the k = 0 mode is removed
+        influence_[(static_cast<std::size_t>(i) * K[1] + j) * n3 + l] =
+            ewald_fourier_scale(k2, parameters.xi) * inv_volume /
+            (modulus[0][i] * modulus[1][j] * modulus[2][l]);
+      }
+    }
+  }
+
+  const unsigned flags = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+  static const bool threads_ready = fftw_init_threads() != 0;
+  if (threads_ready) fftw_plan_with_nthreads(omp_get_max_threads());
+  forward3_ = plan_many(K, 3, true, flags);
+  forward6_ = plan_many(K, 6, true, flags);
+  backward3_ = plan_many(K, 3, false, flags);
+  if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
+}
+
+SpmeGrid::~SpmeGrid() {
+  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+  for (fftw_plan p : {forward3_, forward6_, backward3_})
+    if (p) fftw_destroy_plan(p);
+}
+
+std::size_t SpmeGrid::real_points() const {
+  return static_cast<std::size_t>(size(0)) * size(1) * size(2);
+}
+
+std::size_t SpmeGrid::complex_points() const {
+  return static_cast<std::size_t>(size(0)) * size(1) * (size(2) / 2 + 1);
+}
+
+void SpmeGrid::forward(int components, double* real, fftw_complex* spectrum) const {
+  fftw_execute_dft_r2c(components == 3 ? forward3_ : forward6_, real, spectrum);
+}
+
+void SpmeGrid::backward(fftw_complex* spectrum, double* real) const {
+  fftw_execute_dft_c2r(backward3_, spectrum, real);
+}
+
+void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
+  Complex* f = reinterpret_cast<Complex*>(spectrum);
+  const int K1 = size(1), n3 = size(2) / 2 + 1;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < size(0); ++i) {
+    for (int j = 0; j < K1; ++j) {
+      for (int l = 0; l < n3; ++l) {
+        const std::size_t m = (static_cast<std::size_t>(i) * K1 + j) * n3 + l;
+        Complex* fm = f + 3 * m;
+        const double s = influence_[m];
+        if (s == 0.0) {
+          fm[0] = fm[1] = fm[2] = 0.0;
+          continue;
+        }
+        // S^F(k) f = s (f - k (k.f)/k^2)
+        const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+        const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
+        const Complex kf = (k0 * fm[0] + k1 * fm[1] + k2 * fm[2]) * inv_k2;
+        fm[0] = s * (fm[0] - k0 * kf);
+        fm[1] = s * (fm[1] - k1 * kf);
+        fm[2] = s * (fm[2] - k2 * kf);
+      }
+    }
+  }
+}
+
+void SpmeGrid::apply_stresslet(const fftw_complex* density, fftw_complex* velocity) const {
+  const Complex* D = reinterpret_cast<const Complex*>(density);
+  Complex* u = reinterpret_cast<Complex*>(velocity);
+  const int K1 = size(1), n3 = size(2) / 2 + 1;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < size(0); ++i) {
+    for (int j = 0; j < K1; ++j) {
+      for (int l = 0; l < n3; ++l) {
+        const std::size_t m = (static_cast<std::size_t>(i) * K1 + j) * n3 + l;
+        const Complex* d = D + 6 * m;
+        Complex* um = u + 3 * m;
+        const double s = influence_[m];
+        if (s == 0.0) {
+          um[0] = um[1] = um[2] = 0.0;
+          continue;
+        }
+        // T^F(-k) : D = -i s [2 D k + k tr D - 2 k (k.D.k)/k^2] (ewald_fourier_stresslet_apply).
+        const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+        const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
+        const Complex dk0 = d[0] * k0 + d[3] * k1 + d[4] * k2;
+        const Complex dk1 = d[3] * k0 + d[1] * k1 + d[5] * k2;
+        const Complex dk2 = d[4] * k0 + d[5] * k1 + d[2] * k2;
+        const Complex scalar = d[0] + d[1] + d[2] - 2.0 * (k0 * dk0 + k1 * dk1 + k2 * dk2) * inv_k2;
+        const auto times_minus_is = [s](Complex z) { return Complex(s * z.imag(), -s * z.real()); };
+        um[0] = times_minus_is(2.0 * dk0 + k0 * scalar);
+        um[1] = times_minus_is(2.0 * dk1 + k1 * scalar);
+        um[2] = times_minus_is(2.0 * dk2 + k2 * scalar);
+      }
+    }
+  }
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,96 @@
+#include "spme_plan.h"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+namespace rbcflow {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point& t) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return s;
+}
+
+void check_rows(const PointField& field, int n, const char* what) {
+  if (field.rows() != n)
+    throw std::invalid_argument(std::string("SPME: ") + what + " has " +
+                                std::to_string(field.rows()) + " rows for " + std::to_string(n) +
+                                " sources");
+}
+
+}  // namespace
+
+SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
+                   const PointField& targets)
+    : grid_(std::move(grid)),
+      sources_(std::make_shared<const SpmeStencils>(*grid_, sources)),
+      targets_(std::make_shared<const SpmeStencils>(*grid_, targets)),
+      real_(6 * grid_->real_points()),
+      spectrum_(6 * grid_->complex_points()),
+      velocity_(3 * grid_->complex_points()) {}
+
+SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points)
+    : grid_(std::move(grid)),
+      sources_(std::make_shared<const SpmeStencils>(*grid_, points)),
+      targets_(sources_),
+      real_(6 * grid_->real_points()),
+      spectrum_(6 * grid_->complex_points()),
+      velocity_(3 * grid_->complex_points()) {}
+
+PointField SpmePlan::single_layer(const PointField& forces) {
+  check_rows(forces, n_sources(), "the force field");
+  auto t = std::chrono::steady_clock::now();
+  density_.resize(3 * static_cast<std::size_t>(n_sources()));
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < n_sources(); ++s)
+    for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
+  sources_->spread<3>(density_.data(), real_.data());
+  timings_.spreading = seconds_since(t);
+  grid_->forward(3, real_.data(), velocity_.data());
+  timings_.fft = seconds_since(t);
+  grid_->apply_stokeslet(velocity_.data());
+  timings_.influence = seconds_since(t);
+  return transform_and_interpolate();
+}
+
+PointField SpmePlan::double_layer(const PointField& q, const PointField& normals) {
+  check_rows(q, n_sources(), "the double-layer density");
+  check_rows(normals, n_sources(), "the normal field");
+  auto t = std::chrono::steady_clock::now();
+  density_.resize(6 * static_cast<std::size_t>(n_sources()));
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < n_sources(); ++s) {
+    // Symmetric part of q n^T (T is symmetric): xx, yy, zz, xy, xz, yz.
+    double* d = &density_[6 * static_cast<std::size_t>(s)];
+    const double q0 = q(s, 0), q1 = q(s, 1), q2 = q(s, 2);
+    const double n0 = normals(s, 0), n1 = normals(s, 1), n2 = normals(s, 2);
+    d[0] = q0 * n0;
+    d[1] = q1 * n1;
+    d[2] = q2 * n2;
+    d[3] = 0.5 * (q0 * n1 + q1 * n0);
+    d[4] = 0.5 * (q0 * n2 + q2 * n0);
+    d[5] = 0.5 * (q1 * n2 + q2 * n1);
+  }
+  sources_->spread<6>(density_.data(), real_.data());
+  timings_.spreading = seconds_since(t);
+  grid_->forward(6, real_.data(), spectrum_.data());
+  timings_.fft = seconds_since(t);
+  grid_->apply_stresslet(spectrum_.data(), velocity_.data());
+  timings_.influence = seconds_since(t);
+  return transform_and_interpolate();
+}
+
+PointField SpmePlan::transform_and_interpolate() {
+  auto t = std::chrono::steady_clock::now();
+  grid_->backward(velocity_.data(), real_.data());
+  timings_.fft += seconds_since(t);
+  PointField u;
+  targets_->interpolate(real_.data(), u);
+  timings_.interpolation = seconds_since(t);
+  return u;
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,58 @@
+#pragma once
+// The smooth part of the periodic single- and double-layer sums by SPME (section 5.2) for
+// fixed source and target positions: stencils computed once, work arrays kept, so that a
+// product (every GMRES iteration) costs spreading + FFT + influence + FFT + interpolation.
+//
+//   single_layer: u(x_t) = (1/V) sum_{k != 0} S^F(k) . sum_s f_s e^{i k.(x_s - x_t)}
+//   double_layer: u_i(x_t) = (1/V) sum_{k != 0} sum_s T^F_ijk(k) q_s,j n_s,k e^{i k.(x_s - x_t)}
+// (REFERENCES.md section 2; densities carry their quadrature weights). A source that is also
+// a target contributes its smooth self-term, as it must (only the real-space sum skips r = 0).
+//
+// Products modify the work arrays: one thread at a time per plan (each product is itself
+// OpenMP-parallel). Several plans may share one SpmeGrid.
+#include <memory>
+
+#include "geometry/fftw_util.h"
+#include "periodic_box.h"
+#include "spme_grid.h"
+#include "spme_stencils.h"
+
+namespace rbcflow {
+
+// Wall-clock seconds of the stages of the last product.
+struct SpmeTimings {
+  double spreading = 0.0, fft = 0.0, influence = 0.0, interpolation = 0.0;
+};
+
+class SpmePlan {
+ public:
+  SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
+           const PointField& targets);
+  // Targets are the sources (the stencils are shared).
+  SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points);
+
+  const SpmeGrid& grid() const { return *grid_; }
+  int n_sources() const { return sources_->size(); }
+  int n_targets() const { return targets_->size(); }
+
+  // forces: one row per source; returns one row per target. Throws on a size mismatch.
+  PointField single_layer(const PointField& forces);
+  // q (the density, weights included) and normals: one row per source.
+  PointField double_layer(const PointField& q, const PointField& normals);
+
+  const SpmeTimings& timings() const { return timings_; }
+
+ private:
+  // Backward FFT of velocity_ and interpolation to the targets.
+  PointField transform_and_interpolate();
+
+  std::shared_ptr<const SpmeGrid> grid_;
+  std::shared_ptr<const SpmeStencils> sources_, targets_;
+  std::vector<double> density_;        // interleaved point densities
+  FftwBuffer<double> real_;            // 6 interleaved real grids
+  FftwBuffer<fftw_complex> spectrum_;  // 6 interleaved spectra
+  FftwBuffer<fftw_complex> velocity_;  // 3 interleaved spectra
+  SpmeTimings timings_;
+};
+
+}  // namespace rbcflow

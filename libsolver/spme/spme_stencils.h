@@ -1,0 +1,50 @@
+#pragma once
+// B-spline stencils of one point set on an SPME grid: the p^3 grid points and weights of each
+// point, computed once per geometry, and the two grid operations that use them (Essmann et al.
+// 1995, eq. 4.6): spreading point densities to the grid and interpolating grid values back.
+//
+// A point at grid coordinate u_d = x_d / h_d = floor(u_d) + t_d touches the grid indices
+// floor(u_d) - j (mod K_d) with weight M_p(t_d + j), j = 0 .. p-1, in each direction.
+//
+// Spreading is parallel without races by colouring: the points are sorted into slabs along the
+// first grid direction, each at least p - 1 grid planes wide, an even number of them around
+// the periodic grid; slabs of one parity never write to the same grid plane.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "periodic_box.h"
+#include "spme_grid.h"
+
+namespace rbcflow {
+
+class SpmeStencils {
+ public:
+  SpmeStencils(const SpmeGrid& grid, const PointField& points);
+
+  int size() const { return static_cast<int>(order_.size()); }
+
+  // grid[C * g + c] = sum_points W_point(g) density[C * point + c]: `density` holds C
+  // interleaved numbers per point in the caller's order; `grid` is overwritten.
+  template <int C>
+  void spread(const double* density, double* grid) const;
+
+  // out(point, c) = sum_g W_point(g) grid[3 * g + c].
+  void interpolate(const double* grid, PointField& out) const;
+
+ private:
+  template <int C>
+  void spread_point(int i, const double* density, double* grid) const;
+
+  std::array<int, 3> K_;
+  int p_;
+  std::vector<int> order_;       // stencils are stored sorted: entry i is point order_[i]
+  std::vector<int> first_;       // 3 per point: first grid index (mod K_d) of the stencil
+  std::vector<double> weights_;  // 3 p per point: ascending grid index in each direction
+  std::vector<int> slab_begin_;  // points of slab s: [slab_begin_[s], slab_begin_[s + 1])
+};
+
+extern template void SpmeStencils::spread<3>(const double*, double*) const;
+extern template void SpmeStencils::spread<6>(const double*, double*) const;
+
+}  // namespace rbcflow

@@ -1,0 +1,77 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "libsolver/spme/bspline.h"
+#include "libsolver/spme/ewald_parameters.h"
+
+using namespace rbcflow;
+
+namespace {
+bool is_even_fft_friendly(int n) {
+  if (n % 2 != 0) return false;
+  for (int f : {2, 3, 5, 7})
+    while (n % f == 0) n /= f;
+  return n == 1;
+}
+}  // namespace
+
+TEST(EwaldParameters, ChoiceMeetsItsOwnEstimates) {
+  const PeriodicBox box(Eigen::Vector3d(1.0, 2.0, 0.75));
+  for (EwaldKernel kernel : {EwaldKernel::stokeslet, EwaldKernel::stresslet})
+    for (double tolerance : {1e-3, 1e-6, 1e-10}) {
+      const EwaldChoice c = choose_ewald_parameters(kernel, tolerance, box, 5000);
+      const EwaldParameters& p = c.parameters;
+      EXPECT_NO_THROW(validate(p, box));
+      EXPECT_LE(std::hypot(c.real_space_error, c.grid_error), 0.5 * tolerance * (1 + 1e-9));
+      EXPECT_NEAR(c.real_space_error, real_space_error(kernel, box, p.xi, p.cutoff), 1e-20);
+      EXPECT_NEAR(c.grid_error, spme_grid_error(kernel, box, p.xi, p.grid, p.order), 1e-20);
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_TRUE(is_even_fft_friendly(p.grid[d])) << p.grid[d];
+        // Nearly equal spacing in every direction.
+        const double h = box.length(d) / p.grid[d], h0 = box.length(0) / p.grid[0];
+        EXPECT_NEAR(h / h0, 1.0, 0.25);
+      }
+      EXPECT_NEAR(p.alpha(), std::acos(-1.0) / (p.xi * p.xi), 1e-15);
+    }
+}
+
+// Tighter tolerances cost more; more points per volume shift work to the grid (larger xi).
+TEST(EwaldParameters, CostGrowsWithAccuracyAndXiWithDensity) {
+  const PeriodicBox box(Eigen::Vector3d::Ones());
+  double previous = 0.0;
+  for (double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {
+    const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stokeslet, tolerance, box, 10000);
+    EXPECT_GT(c.estimated_seconds, previous);
+    previous = c.estimated_seconds;
+  }
+  const double xi_few =
+      choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 1000).parameters.xi;
+  const double xi_many =
+      choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 100000).parameters.xi;
+  EXPECT_GT(xi_many, 2.0 * xi_few);
+}
+
+TEST(EwaldParameters, PrintsEverythingRbcflowCheckShows) {
+  const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stresslet, 1e-6,
+                                                PeriodicBox(Eigen::Vector3d::Ones()), 1000);
+  const std::string s = to_string(c);
+  for (const char* word : {"stresslet", "tolerance 1e-06", "xi =", "alpha", "cutoff", "grid",
+                           "order", "neighbours", "estimated error"})
+    EXPECT_NE(s.find(word), std::string::npos) << word << " in\n" << s;
+}
+
+TEST(EwaldParameters, RejectsBadInput) {
+  const PeriodicBox box(Eigen::Vector3d::Ones());
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-2, box, 100),
+               std::invalid_argument);
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-11, box, 100),
+               std::invalid_argument);
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 0),
+               std::invalid_argument);
+  EXPECT_THROW(validate(EwaldParameters{5.0, 0.3, {16, 16, 16}, 3}, box), std::invalid_argument);
+  EXPECT_THROW(validate(EwaldParameters{5.0, 0.3, {16, 17, 16}, 4}, box), std::invalid_argument);
+  EXPECT_THROW(validate(EwaldParameters{0.0, 0.3, {16, 16, 16}, 4}, box), std::invalid_argument);
+  EXPECT_THROW(validate(EwaldParameters{5.0, -1.0, {16, 16, 16}, 4}, box), std::invalid_argument);
+  EXPECT_THROW(validate(EwaldParameters{5.0, 20.0, {16, 16, 16}, 4}, box), std::invalid_argument);
+}

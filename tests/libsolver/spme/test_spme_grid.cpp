@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <numbers>
+#include <random>
+
+#include "geometry/fftw_util.h"
+#include "libsolver/kernels/ewald_kernels.h"
+#include "libsolver/spme/bspline.h"
+#include "libsolver/spme/spme_grid.h"
+
+using namespace rbcflow;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+using Complex = std::complex<double>;
+
+const PeriodicBox kBox(Eigen::Vector3d(1.0, 1.5, 0.8));
+const EwaldParameters kParams{6.0, 0.5, {16, 20, 12}, 6};
+
+std::size_t mode_index(const SpmeGrid& g, int i, int j, int l) {
+  return (static_cast<std::size_t>(i) * g.size(1) + j) * (g.size(2) / 2 + 1) + l;
+}
+Eigen::Vector3d wavevector(int i, int j, int l, const SpmeGrid& g) {
+  const auto signed_m = [&](int m, int d) { return m <= g.size(d) / 2 ? m : m - g.size(d); };
+  return Eigen::Vector3d(2 * pi * signed_m(i, 0) / kBox.length(0),
+                         2 * pi * signed_m(j, 1) / kBox.length(1), 2 * pi * l / kBox.length(2));
+}
+double spline_modulus(int i, int j, int l, const SpmeGrid& g) {
+  return bspline_modulus(g.order(), g.size(0))[i] * bspline_modulus(g.order(), g.size(1))[j] *
+         bspline_modulus(g.order(), g.size(2))[l];
+}
+}  // namespace
+
+// Backward(forward(x)) = K1 K2 K3 x, for 3 and 6 interleaved components.
+TEST(SpmeGrid, TransformsRoundTrip) {
+  const SpmeGrid grid(kBox, kParams);
+  const std::size_t n = grid.real_points();
+  FftwBuffer<double> real(6 * n), back(3 * n);
+  FftwBuffer<fftw_complex> spectrum(6 * grid.complex_points());
+  std::mt19937 gen(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> original(6 * n);
+  for (std::size_t i = 0; i < 6 * n; ++i) real.data()[i] = original[i] = u(gen);
+  grid.forward(3, real.data(), spectrum.data());
+  grid.backward(spectrum.data(), back.data());
+  double err = 0;
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    err = std::max(err, std::abs(back.data()[i] / n - original[i]));
+  EXPECT_LT(err, 1e-14);
+  // Component 4 of a 6-fold transform = component 1 of the 3-fold transform of the same data.
+  FftwBuffer<fftw_complex> spectrum3(3 * grid.complex_points());
+  for (std::size_t i = 0; i < 6 * n; ++i) real.data()[i] = original[i];
+  grid.forward(6, real.data(), spectrum.data());
+  for (std::size_t g = 0; g < n; ++g)
+    for (int c = 0; c < 3; ++c) real.data()[3 * g + c] = original[6 * g + 3 + c];
+  grid.forward(3, real.data(), spectrum3.data());
+  for (std::size_t m = 0; m < grid.complex_points(); ++m)
+    EXPECT_NEAR(std::abs(Complex(spectrum.data()[6 * m + 4][0], spectrum.data()[6 * m + 4][1]) -
+                         Complex(spectrum3.data()[3 * m + 1][0], spectrum3.data()[3 * m + 1][1])),
+                0.0, 1e-12);
+}
+
+// One mode at a time: u^ = (1/V) K^F(-k) rho^ / |B|^2, zero at k = 0 and on Nyquist planes.
+TEST(SpmeGrid, InfluenceFunctionPerMode) {
+  const SpmeGrid grid(kBox, kParams);
+  FftwBuffer<fftw_complex> f(3 * grid.complex_points()), d(6 * grid.complex_points()),
+      u(3 * grid.complex_points());
+  for (std::size_t i = 0; i < 3 * grid.complex_points(); ++i) f.data()[i][0] = f.data()[i][1] = 1.0;
+  for (std::size_t i = 0; i < 6 * grid.complex_points(); ++i) d.data()[i][0] = d.data()[i][1] = 0.0;
+  const Eigen::Vector3d q(0.3, -1.0, 0.5), n(0.6, 0.0, 0.8);
+  const Eigen::Matrix3d D = 0.5 * (q * n.transpose() + n * q.transpose());
+  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  for (std::size_t m = 0; m < grid.complex_points(); ++m)
+    for (int c = 0; c < 6; ++c) d.data()[6 * m + c][0] = D(pairs[c][0], pairs[c][1]);
+  grid.apply_stokeslet(f.data());
+  grid.apply_stresslet(d.data(), u.data());
+  const auto at = [](FftwBuffer<fftw_complex>& b, std::size_t i) {
+    return Complex(b.data()[i][0], b.data()[i][1]);
+  };
+  for (const auto& [i, j, l] : {std::tuple{1, 2, 3}, std::tuple{15, 0, 1}, std::tuple{3, 17, 0},
+                                std::tuple{0, 0, 0}, std::tuple{8, 1, 1}, std::tuple{2, 2, 6}}) {
+    const std::size_t m = mode_index(grid, i, j, l);
+    const bool dropped = (i == 0 && j == 0 && l == 0) || i == 8 || l == 6;
+    const Eigen::Vector3d k = wavevector(i, j, l, grid);
+    const double scale = dropped ? 0.0 : 1.0 / (kBox.volume() * spline_modulus(i, j, l, grid));
+    const Eigen::Vector3d s = dropped ? Eigen::Vector3d::Zero()
+                                      : Eigen::Vector3d(ewald_fourier_stokeslet_apply(
+                                            k, kParams.xi, Eigen::Vector3d::Ones()));
+    // T^F(-k) : (q n) = -i v(k).
+    const Eigen::Vector3d v =
+        dropped ? Eigen::Vector3d::Zero()
+                : Eigen::Vector3d(ewald_fourier_stresslet_apply(k, kParams.xi, q, n));
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(std::abs(at(f, 3 * m + c) - scale * Complex(s[c], s[c])), 0.0, 1e-13);
+      EXPECT_NEAR(std::abs(at(u, 3 * m + c) - scale * Complex(0.0, -v[c])), 0.0, 1e-13);
+    }
+  }
+}
+
+TEST(SpmeGrid, RejectsBadParameters) {
+  for (const EwaldParameters& p :
+       {EwaldParameters{-1.0, 0.5, {16, 16, 16}, 6}, EwaldParameters{6.0, 0.0, {16, 16, 16}, 6},
+        EwaldParameters{6.0, 0.5, {16, 15, 16}, 6}, EwaldParameters{6.0, 0.5, {16, 16, 10}, 6},
+        EwaldParameters{6.0, 0.5, {32, 32, 32}, 11}})
+    EXPECT_THROW(SpmeGrid(kBox, p), std::invalid_argument);
+}
