@@ -30,5 +30,6 @@ class Args {
 int run_info(Args& args);
 int run_shape(Args& args);
 int run_check(Args& args);
+int run_render(Args& args);
 
 }  // namespace rbcflow::cli

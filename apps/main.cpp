@@ -15,6 +15,7 @@ void print_usage() {
       "usage: rbcflow COMMAND [ARGS]\n"
       "commands:\n"
       "  check CASE.toml      validate a case; print derived parameters\n"
+      "  render OUTDIR -o F.png  render a saved frame (or --plot the diagnostics)\n"
       "  info                 version, libraries, threads\n"
       "  shape NAME -o F.vtp  export a reference cell shape (rbc, sphere, ellipsoid, ...)\n"
       "Run 'rbcflow COMMAND --help' for the arguments of a command.\n");
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     if (command == "info") return run_info(args);
     if (command == "shape") return run_shape(args);
     if (command == "check") return run_check(args);
+    if (command == "render") return run_render(args);
     std::fprintf(stderr, "rbcflow: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

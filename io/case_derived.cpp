@@ -63,6 +63,19 @@ double time_step(const Case& c) {
   return std::min(c.time.end, c.time.dt_safety * time_step_limit(*c.cells));
 }
 
+int flow_axis(const Case& c) {
+  if (c.vessel) return c.vessel->axis;
+  if (c.domain.kind == DomainKind::free) return c.domain.background_flow.kind == FlowKind::none ? 2 : 0;
+  for (const auto& v : {c.domain.mean_velocity, c.domain.pressure_gradient,
+                        c.cells ? std::optional<Vec3>(c.cells->body_force) : std::nullopt}) {
+    if (!v) continue;
+    const Vec3 a{std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])};
+    const int k = static_cast<int>(std::max_element(a.begin(), a.end()) - a.begin());
+    if (a[k] > 0) return k;
+  }
+  return 2;
+}
+
 std::optional<double> vessel_volume(const Case& c) {
   if (!has_round_vessel(c)) return std::nullopt;
   const Vessel& v = *c.vessel;

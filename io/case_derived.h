@@ -24,6 +24,11 @@ double time_step_limit(const Cells& cells);
 // time.end (a single step of the quasi-steady wall flow).
 double time_step(const Case& c);
 
+// The axis (0, 1, 2) the flow runs along: the vessel's; x for a free domain's background flow;
+// otherwise the largest component of mean_velocity, pressure_gradient or the body force; z
+// when all are zero. Renders look across it (side) and along it (end).
+int flow_axis(const Case& c);
+
 // Volume and wall area of a tube or constriction over one period of the box; empty for
 // other vessels (known once meshed).
 std::optional<double> vessel_volume(const Case& c);

@@ -23,6 +23,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/input_error.h"
 #include "io/vtk_internal.h"
 
 namespace rbcflow {
@@ -98,12 +99,12 @@ void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, co
   // The colour range over all cells.
   const bool coloured = o.field != "none";
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  std::string available;
+  std::vector<std::string> available;
   bool found = false;
   for (const Surface& s : surfaces) {
     if (s.name == "wall") continue;
     for (const PointField& f : s.fields) {
-      if (available.find(" " + f.name + " ") == std::string::npos) available.append(" ").append(f.name).append(" ");
+      if (std::find(available.begin(), available.end(), f.name) == available.end()) available.push_back(f.name);
     }
     if (const PointField* f = coloured ? find_field(s, o.field) : nullptr) {
       const Eigen::VectorXd v = colour_values(*f);
@@ -115,8 +116,10 @@ void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, co
     }
   }
   if (coloured && !found) {
-    throw std::runtime_error("cannot render " + png.string() + ": the cells have no field '" + o.field +
-                             "' (fields:" + (available.empty() ? " none" : available) + ")");
+    std::string names;
+    for (const std::string& n : available) names.append(names.empty() ? "" : ", ").append(n);
+    throw InputError("cannot render " + png.string() + ": the cells have no field '" + o.field +
+                     "' (fields: " + (names.empty() ? "none" : names) + ")");
   }
   if (!coloured) lo = 0, hi = 1;
   if (!(hi > lo)) hi = lo + 1;  // a uniform field still gets a colour bar

@@ -24,8 +24,8 @@ struct RenderOptions {
 };
 
 // Surfaces named "wall" are drawn translucent; all others are cells. Writes `png`
-// atomically. Throws std::runtime_error when there is no display, when no cell surface has
-// `field` (the message lists the fields there are), or when the PNG cannot be written.
+// atomically. Throws InputError when no cell surface has `field` (the message lists the
+// fields there are); std::runtime_error when there is no display or the PNG cannot be written.
 void render_png(const std::vector<Surface>& surfaces, const RenderOptions& options,
                 const std::filesystem::path& png);
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/input_error.h"
 #include "io/vtk_polydata.h"
 #include "io/xdmf_writer.h"
 
@@ -82,12 +83,12 @@ void VtkSeriesWriter::write_pvd() const {
 }
 
 std::vector<VtkSeriesEntry> read_pvd(const fs::path& pvd) {
-  if (!fs::is_regular_file(pvd)) throw std::runtime_error("cannot read " + pvd.string() + ": no such file");
+  if (!fs::is_regular_file(pvd)) throw InputError("cannot read " + pvd.string() + ": no such file");
   vtkSmartPointer<vtkXMLDataElement> root;
   root.TakeReference(vtkXMLUtilities::ReadElementFromFile(pvd.c_str()));
   vtkXMLDataElement* collection = root ? root->FindNestedElementWithName("Collection") : nullptr;
   if (!collection || std::string(root->GetName()) != "VTKFile") {
-    throw std::runtime_error("cannot read " + pvd.string() + ": not a VTK collection (.pvd) file");
+    throw InputError("cannot read " + pvd.string() + ": not a VTK collection (.pvd) file");
   }
   std::vector<VtkSeriesEntry> entries;
   for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
@@ -97,7 +98,7 @@ std::vector<VtkSeriesEntry> read_pvd(const fs::path& pvd) {
     const char* name = d->GetAttribute("name");
     const char* file = d->GetAttribute("file");
     if (std::string(d->GetName()) != "DataSet" || !time || !step || !name || !file) {
-      throw std::runtime_error("cannot read " + pvd.string() + ": DataSet " + std::to_string(i) +
+      throw InputError("cannot read " + pvd.string() + ": DataSet " + std::to_string(i) +
                                " lacks timestep, step, name or file");
     }
     entries.push_back({std::stol(step), std::stod(time), name, file});
@@ -108,7 +109,7 @@ std::vector<VtkSeriesEntry> read_pvd(const fs::path& pvd) {
 VtkFrame read_vtk_frame(const fs::path& dir, std::optional<long> step, const std::string& stem) {
   const fs::path pvd = dir / (stem + ".pvd");
   const std::vector<VtkSeriesEntry> entries = read_pvd(pvd);
-  if (entries.empty()) throw std::runtime_error(pvd.string() + " lists no frames yet");
+  if (entries.empty()) throw InputError(pvd.string() + " lists no frames yet");
   const long wanted = step.value_or(entries.back().step);
   VtkFrame frame{wanted, 0, {}};
   std::set<long> steps;
@@ -122,7 +123,7 @@ VtkFrame read_vtk_frame(const fs::path& dir, std::optional<long> step, const std
   if (frame.surfaces.empty()) {
     std::string saved;
     for (const long s : steps) saved.append(" ").append(std::to_string(s));
-    throw std::runtime_error("no frame at step " + std::to_string(wanted) + " in " + pvd.string() +
+    throw InputError("no frame at step " + std::to_string(wanted) + " in " + pvd.string() +
                              " (saved steps:" + saved + ")");
   }
   return frame;

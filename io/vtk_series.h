@@ -34,12 +34,12 @@ class VtkSeriesWriter {
   std::vector<VtkSeriesEntry> entries_;
 };
 
-// The entries of DIR/STEM.pvd as written by VtkSeriesWriter; throws std::runtime_error naming
-// the file when it is missing or not such a collection.
+// The entries of DIR/STEM.pvd as written by VtkSeriesWriter; throws InputError naming the
+// file when it is missing or not such a collection.
 std::vector<VtkSeriesEntry> read_pvd(const std::filesystem::path& pvd);
 
-// One saved frame read back: `step`, or the last frame when empty. Throws
-// std::runtime_error listing the saved steps when `step` is not among them.
+// One saved frame read back: `step`, or the last frame when empty. Throws InputError listing
+// the saved steps when `step` is not among them.
 struct VtkFrame {
   long step = 0;
   double time = 0;

@@ -96,3 +96,15 @@ TEST(CaseDerived, MemoryModelCountsWallNodesLikeGmsh) {
   EXPECT_EQ(m.ewald, 0);  // the grid is the solver's choice unless given
   EXPECT_EQ(m.total(), m.cells + m.wall);
 }
+
+TEST(CaseDerived, FlowAxisFollowsVesselFlowOrForce) {
+  EXPECT_EQ(flow_axis(tube_case(3, 10, "")), 2);
+  EXPECT_EQ(flow_axis(parse_case("[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, -2, 1]\n", "a.toml")), 1);
+  EXPECT_EQ(flow_axis(parse_case("[domain]\nbox = [4, 4, 4]\npressure_gradient = [3, 0, 0]\n", "a.toml")), 0);
+  EXPECT_EQ(flow_axis(parse_case("[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, 0, 0]\n[cells]\n"
+                                 "body_force = [0, 1, 0]\n",
+                                 "a.toml")),
+            1);
+  EXPECT_EQ(flow_axis(parse_case("[domain]\nkind = \"free\"\nbackground_flow = { kind = \"shear\" }\n", "a.toml")), 0);
+  EXPECT_EQ(flow_axis(parse_case("[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, 0, 0]\n", "a.toml")), 2);
+}

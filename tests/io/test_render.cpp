@@ -131,7 +131,7 @@ TEST(Render, BadRequestsAreClearErrors) {
     render_png(scene(), o, dir / "x.png");
     FAIL();
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("no field 'pressure' (fields: tension  velocity  cell )"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("no field 'pressure' (fields: tension, velocity, cell)"), std::string::npos)
         << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "x.png"));
