@@ -122,7 +122,9 @@ bool exists(hid_t loc, const std::string& path) {
   return true;
 }
 
-std::vector<std::string> children(hid_t group) {
+std::vector<std::string> children(hid_t loc) {
+  Id root;  // a file lists its root group
+  const hid_t group = H5Iget_type(loc) == H5I_FILE ? (root = open_group(loc, "/")).get() : loc;
   H5G_info_t info;
   check(H5Gget_info(group, &info), "cannot list a group");
   // Groups made by create_group index their creation order; others list by name.

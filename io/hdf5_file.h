@@ -49,7 +49,7 @@ void flush(hid_t file);
 Id create_group(hid_t loc, const std::string& name);
 Id open_group(hid_t loc, const std::string& name);
 bool exists(hid_t loc, const std::string& path);  // every component of a '/' path
-std::vector<std::string> children(hid_t group);
+std::vector<std::string> children(hid_t group_or_file);
 void remove(hid_t loc, const std::string& name);
 void soft_link(hid_t loc, const std::string& name, const std::string& target_path);
 
