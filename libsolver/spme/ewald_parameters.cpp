@@ -14,7 +14,10 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr int kMaxGridSide = 2048;
-constexpr double kMaxGridPoints = 134217728.0;  // 2^27 points: about 6 GB of work arrays
+// Memory limits: grids of at most 2^25 points (up to 120 bytes each in work arrays, 4 GB) and
+// at most 5e8 real-space pairs (6 bytes each in the neighbour list, 3 GB).
+constexpr double kMaxGridPoints = 33554432.0;
+constexpr double kMaxPairs = 5e8;
 
 // Measured costs of one product on the 2-core development machine, 1 thread
 // (bench/bench_spme.cpp): seconds per real-space pair, per grid node and density component
@@ -136,6 +139,7 @@ EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const 
     const double xi = xi_lo * std::pow(xi_hi / xi_lo, i / (n_xi - 1.0));
     const double cutoff = cutoff_for(kernel, box, xi, part);
     const double neighbours = ns * 4.0 / 3.0 * pi * cutoff * cutoff * cutoff / V;
+    if (neighbours * nt > kMaxPairs) continue;
     for (int order = kMinSplineOrder; order <= kMaxSplineOrder; ++order) {
       const double h = spacing_for(kernel, box, xi, order, part);
       if (h <= 0.0) continue;
@@ -151,8 +155,9 @@ EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const 
   }
   if (!std::isfinite(best.estimated_seconds)) {
     std::ostringstream msg;
-    msg << "Ewald parameters: no grid of at most " << kMaxGridSide << " points per side reaches "
-        << "tolerance " << tolerance;
+    msg << "Ewald parameters: tolerance " << tolerance << " for " << n_sources
+        << " sources needs more than " << kMaxPairs << " real-space pairs or " << kMaxGridPoints
+        << " grid points";
     throw std::invalid_argument(msg.str());
   }
   const EwaldParameters& p = best.parameters;

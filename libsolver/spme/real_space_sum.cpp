@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "libsolver/kernels/ewald_kernels.h"
+#include "libsolver/kernels/ewald_real_kernel.h"
 
 namespace rbcflow {
 namespace {
@@ -36,13 +36,14 @@ std::vector<double> sorted_densities(const NeighborList& pairs,
 PointField real_space_single_layer(const NeighborList& pairs, double xi, const PointField& forces) {
   check_rows(forces, pairs.n_sources(), "the force field");
   const std::vector<double> f = sorted_densities(pairs, {&forces});
+  const EwaldRealKernel kernel(xi);
   PointField u(pairs.n_targets(), 3);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int t = 0; t < pairs.n_targets(); ++t) {
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
       const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
-      acc += ewald_real_stokeslet_apply(r, xi, fs);
+      acc += kernel.stokeslet_apply(r, fs);
     });
     u.row(t) = acc.transpose();
   }
@@ -54,6 +55,7 @@ PointField real_space_double_layer(const NeighborList& pairs, double xi, const P
   check_rows(q, pairs.n_sources(), "the double-layer density");
   check_rows(normals, pairs.n_sources(), "the normal field");
   const std::vector<double> qn = sorted_densities(pairs, {&q, &normals});
+  const EwaldRealKernel kernel(xi);
   PointField u(pairs.n_targets(), 3);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int t = 0; t < pairs.n_targets(); ++t) {
@@ -61,7 +63,7 @@ PointField real_space_double_layer(const NeighborList& pairs, double xi, const P
     pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
       const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
       const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
-      acc += ewald_real_stresslet_apply(r, xi, qs, ns);
+      acc += kernel.stresslet_apply(r, qs, ns);
     });
     u.row(t) = acc.transpose();
   }

@@ -28,22 +28,19 @@ SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sourc
     : grid_(std::move(grid)),
       sources_(std::make_shared<const SpmeStencils>(*grid_, sources)),
       targets_(std::make_shared<const SpmeStencils>(*grid_, targets)),
-      real_(6 * grid_->real_points()),
-      spectrum_(6 * grid_->complex_points()),
       velocity_(3 * grid_->complex_points()) {}
 
 SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points)
     : grid_(std::move(grid)),
       sources_(std::make_shared<const SpmeStencils>(*grid_, points)),
       targets_(sources_),
-      real_(6 * grid_->real_points()),
-      spectrum_(6 * grid_->complex_points()),
       velocity_(3 * grid_->complex_points()) {}
 
 PointField SpmePlan::single_layer(const PointField& forces) {
   check_rows(forces, n_sources(), "the force field");
   auto t = std::chrono::steady_clock::now();
   density_.resize(3 * static_cast<std::size_t>(n_sources()));
+  real_.reserve(3 * grid_->real_points());
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s)
     for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
@@ -61,6 +58,8 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
   density_.resize(6 * static_cast<std::size_t>(n_sources()));
+  real_.reserve(6 * grid_->real_points());
+  spectrum_.reserve(6 * grid_->complex_points());
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s) {
     // Symmetric part of q n^T (T is symmetric): xx, yy, zz, xy, xz, yz.

@@ -49,8 +49,8 @@ class SpmePlan {
   std::shared_ptr<const SpmeGrid> grid_;
   std::shared_ptr<const SpmeStencils> sources_, targets_;
   std::vector<double> density_;        // interleaved point densities
-  FftwBuffer<double> real_;            // 6 interleaved real grids
-  FftwBuffer<fftw_complex> spectrum_;  // 6 interleaved spectra
+  FftwBuffer<double> real_;            // 3 (single layer) or 6 interleaved real grids
+  FftwBuffer<fftw_complex> spectrum_;  // 6 interleaved spectra (double layer only)
   FftwBuffer<fftw_complex> velocity_;  // 3 interleaved spectra
   SpmeTimings timings_;
 };

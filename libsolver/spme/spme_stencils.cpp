@@ -58,26 +58,37 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
   }
 }
 
+namespace {
+
+// The innermost direction in at most two contiguous runs of grid points: n first nodes from the
+// stencil's first index, the rest from index 0 when the stencil wraps around the grid.
+int first_run(int first, int order, int size) { return std::min(order, size - first); }
+
+// y[m] += a x[m], m < n: contiguous, vectorised.
+inline void add_scaled(double* __restrict__ y, double a, const double* __restrict__ x, int n) {
+  for (int m = 0; m < n; ++m) y[m] += a * x[m];
+}
+
+}  // namespace
+
 template <int C>
 void SpmeStencils::spread_point(int i, const double* density, double* grid) const {
   const int* f = &first_[3 * static_cast<std::size_t>(i)];
   const double* w = &weights_[3 * static_cast<std::size_t>(p_) * i];
   const double* rho = density + C * static_cast<std::size_t>(order_[i]);
-  int index[3][kMaxSplineOrder];
-  for (int d = 0; d < 3; ++d)
-    for (int j = 0; j < p_; ++j) index[d][j] = f[d] + j < K_[d] ? f[d] + j : f[d] + j - K_[d];
-  double w_rho[kMaxSplineOrder][C];
+  // w_rho[C c + k] = w_3(c) rho_k over the innermost direction.
+  double w_rho[C * kMaxSplineOrder];
   for (int c = 0; c < p_; ++c)
-    for (int k = 0; k < C; ++k) w_rho[c][k] = w[2 * p_ + c] * rho[k];
+    for (int k = 0; k < C; ++k) w_rho[C * c + k] = w[2 * p_ + c] * rho[k];
+  const int run = first_run(f[2], p_, K_[2]);
   for (int a = 0; a < p_; ++a) {
+    const int i0 = f[0] + a < K_[0] ? f[0] + a : f[0] + a - K_[0];
     for (int b = 0; b < p_; ++b) {
+      const int i1 = f[1] + b < K_[1] ? f[1] + b : f[1] + b - K_[1];
       const double wab = w[a] * w[p_ + b];
-      double* row =
-          grid + C * ((static_cast<std::size_t>(index[0][a]) * K_[1] + index[1][b]) * K_[2]);
-      for (int c = 0; c < p_; ++c) {
-        double* g = row + C * static_cast<std::size_t>(index[2][c]);
-        for (int k = 0; k < C; ++k) g[k] += wab * w_rho[c][k];
-      }
+      double* row = grid + C * ((static_cast<std::size_t>(i0) * K_[1] + i1) * K_[2]);
+      add_scaled(row + C * f[2], wab, w_rho, C * run);
+      add_scaled(row, wab, w_rho + C * run, C * (p_ - run));
     }
   }
 }
@@ -105,25 +116,25 @@ void SpmeStencils::interpolate(const double* grid, PointField& out) const {
   for (int i = 0; i < size(); ++i) {
     const int* f = &first_[3 * static_cast<std::size_t>(i)];
     const double* w = &weights_[3 * static_cast<std::size_t>(p_) * i];
-    int index[3][kMaxSplineOrder];
-    for (int d = 0; d < 3; ++d)
-      for (int j = 0; j < p_; ++j) index[d][j] = f[d] + j < K_[d] ? f[d] + j : f[d] + j - K_[d];
-    double acc[3] = {0.0, 0.0, 0.0};
+    const int run = first_run(f[2], p_, K_[2]);
+    // sums[3 c + k] = sum_ab w_1(a) w_2(b) grid_k(a, b, c), then weighted along the innermost
+    // direction.
+    double sums[3 * kMaxSplineOrder] = {};
     for (int a = 0; a < p_; ++a) {
+      const int i0 = f[0] + a < K_[0] ? f[0] + a : f[0] + a - K_[0];
       for (int b = 0; b < p_; ++b) {
+        const int i1 = f[1] + b < K_[1] ? f[1] + b : f[1] + b - K_[1];
         const double wab = w[a] * w[p_ + b];
-        const double* row =
-            grid + 3 * ((static_cast<std::size_t>(index[0][a]) * K_[1] + index[1][b]) * K_[2]);
-        for (int c = 0; c < p_; ++c) {
-          const double* g = row + 3 * static_cast<std::size_t>(index[2][c]);
-          const double wt = wab * w[2 * p_ + c];
-          acc[0] += wt * g[0];
-          acc[1] += wt * g[1];
-          acc[2] += wt * g[2];
-        }
+        const double* row = grid + 3 * ((static_cast<std::size_t>(i0) * K_[1] + i1) * K_[2]);
+        add_scaled(sums, wab, row + 3 * f[2], 3 * run);
+        add_scaled(sums + 3 * run, wab, row, 3 * (p_ - run));
       }
     }
-    for (int k = 0; k < 3; ++k) out(order_[i], k) = acc[k];
+    for (int k = 0; k < 3; ++k) {
+      double acc = 0.0;
+      for (int c = 0; c < p_; ++c) acc += w[2 * p_ + c] * sums[3 * c + k];
+      out(order_[i], k) = acc;
+    }
   }
 }
 
