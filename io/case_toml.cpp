@@ -565,6 +565,44 @@ Case read_root(const toml::value& root, const fs::path& file) {
   return c;
 }
 
+// The line and byte offset of the first byte that is not well-formed UTF-8 (no overlong forms,
+// surrogates or code points beyond U+10FFFF), or line 0. TOML files are UTF-8; checked
+// before toml11 sees the text, whose error paths for invalid UTF-8 in literal strings read
+// past the end of its buffer (toml11 3.7.1, found by tests/io/fuzz).
+std::pair<int, std::size_t> invalid_utf8(const std::string& text) {
+  const auto* b = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  int line = 1;
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = b[i];
+    std::size_t len = 0;
+    unsigned char lo = 0x80, hi = 0xbf;  // allowed range of the second byte
+    if (c < 0x80) {
+      if (c == '\n') ++line;
+      ++i;
+      continue;
+    } else if (c >= 0xc2 && c <= 0xdf) {
+      len = 2;
+    } else if (c >= 0xe0 && c <= 0xef) {
+      len = 3;
+      if (c == 0xe0) lo = 0xa0;
+      if (c == 0xed) hi = 0x9f;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+      len = 4;
+      if (c == 0xf0) lo = 0x90;
+      if (c == 0xf4) hi = 0x8f;
+    } else {
+      return {line, i};
+    }
+    if (i + len > n || b[i + 1] < lo || b[i + 1] > hi) return {line, i};
+    for (std::size_t k = 2; k < len; ++k) {
+      if (b[i + k] < 0x80 || b[i + k] > 0xbf) return {line, i};
+    }
+    i += len;
+  }
+  return {0, 0};
+}
+
 // "[error] toml::parse_array: missing ..." -> "missing ...", then toml11's source excerpt.
 std::string syntax_message(const std::string& what) {
   std::string first = what.substr(0, what.find('\n'));
@@ -578,6 +616,10 @@ std::string syntax_message(const std::string& what) {
 }  // namespace
 
 Case parse_case(const std::string& text, const fs::path& file) {
+  if (const auto [line, byte] = invalid_utf8(text); line > 0) {
+    throw CaseError(file.string() + ":" + std::to_string(line) + ": malformed TOML: not UTF-8 (byte " +
+                    std::to_string(byte) + " of the file)");
+  }
   toml::value root;
   try {
     std::istringstream in(text);

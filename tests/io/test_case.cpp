@@ -236,6 +236,18 @@ TEST(Case, MalformedTomlNamesFileAndLine) {
   EXPECT_TRUE(contains(error_of("\xff\xfe garbage = = ="), "malformed TOML"));
 }
 
+TEST(Case, TextThatIsNotUtf8IsRejectedBeforeToml11SeesIt) {
+  // toml11 3.7.1 reads past its buffer reporting invalid UTF-8 in a literal string (found by
+  // the fuzzer; tests/io/fuzz/regressions). Every malformed sequence is caught first.
+  EXPECT_EQ(error_of("[domain]\nbox = [6, 6,' \xff\x31'\n"), "bad.toml:2: malformed TOML: not UTF-8 (byte 23 of the file)");
+  for (const char* bad : {"\xc0\xaf", "\xe0\x80\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82", "\x80"}) {
+    EXPECT_TRUE(contains(error_of(std::string("title = \"") + bad + "\"\n"), "not UTF-8")) << bad;
+  }
+  // Well-formed UTF-8 of every length passes.
+  const Case c = parse_case(minimal() + "# \xc3\xa9 \xe2\x82\xac \xf0\x9f\xa9\xb8\n", "ok.toml");
+  EXPECT_EQ(c.domain.box[0], 10.0);
+}
+
 TEST(Case, UnknownKeysAreErrors) {
   EXPECT_EQ(error_of(minimal("[cells]\norder = 8\nordr = 9\n")), "bad.toml:6: cells.ordr: unknown key in [cells]");
   EXPECT_EQ(error_of("colour = 1\n" + minimal()), "bad.toml:1: colour: unknown key");
