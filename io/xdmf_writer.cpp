@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/hdf5_file.h"
 
 namespace rbcflow {
 
@@ -55,18 +56,17 @@ XdmfWriter::XdmfWriter(const fs::path& dir, std::optional<long> resume_step, con
   if (resume_step && fs::exists(h5_path_)) {
     resume(*resume_step);
   } else {
-    file_ = h5::create_file(h5_path_);
-    h5::write_attribute(file_.get(), "format", std::string("rbcflow XDMF series"));
-    h5::create_group(file_.get(), "frames");
-    h5::flush(file_.get());
+    const h5::Id file = h5::create_file(h5_path_);
+    h5::write_attribute(file.get(), "format", std::string("rbcflow XDMF series"));
+    h5::create_group(file.get(), "frames");
   }
   write_xml();
 }
 
 void XdmfWriter::resume(long step) {
   try {
-    file_ = h5::open_file(h5_path_, true);
-    const h5::Id all = h5::open_group(file_.get(), "frames");
+    const h5::Id file = h5::open_file(h5_path_, true);
+    const h5::Id all = h5::open_group(file.get(), "frames");
     for (const std::string& label : h5::children(all.get())) {
       const h5::Id frame = h5::open_group(all.get(), label);
       FrameRecord rec;
@@ -89,7 +89,6 @@ void XdmfWriter::resume(long step) {
       }
       frames_.push_back(std::move(rec));
     }
-    h5::flush(file_.get());
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("cannot continue the XDMF series " + h5_path_.string() + ": " + e.what());
   }
@@ -112,7 +111,8 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
   const std::string label = step_label(step);
   FrameRecord rec{step, time, {}};
   try {
-    const h5::Id all = h5::open_group(file_.get(), "frames");
+    const h5::Id file = h5::open_file(h5_path_, true);
+    const h5::Id all = h5::open_group(file.get(), "frames");
     const h5::Id frame = h5::create_group(all.get(), label);
     h5::write_attribute(frame.get(), "step", static_cast<long long>(step));
     h5::write_attribute(frame.get(), "time", time);
@@ -146,7 +146,7 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
       last_[s.name] = std::move(next);
       rec.surfaces.push_back(std::move(sr));
     }
-    h5::flush(file_.get());
+    h5::flush(file.get());
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("cannot write step " + std::to_string(step) + " to " + h5_path_.string() + ": " +
                              e.what());

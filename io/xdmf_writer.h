@@ -9,15 +9,16 @@
 // The XML: a temporal collection of spatial collections, one uniform grid per surface,
 // dataset paths relative to the .xdmf file.
 //
-// A crash leaves a readable series: after each frame the HDF5 file is flushed and the XML,
-// which lists only complete frames, is replaced atomically.
+// A crash leaves a readable series: the HDF5 file is open only while a frame is written (so
+// ParaView can read it meanwhile, and a kill between frames leaves it closed); after each
+// frame it is flushed and closed, then the XML, which lists only complete frames, is
+// replaced atomically.
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "io/hdf5_file.h"
 #include "io/surface.h"
 
 namespace rbcflow {
@@ -61,7 +62,6 @@ class XdmfWriter {
   void write_xml() const;
 
   std::filesystem::path h5_path_, xdmf_path_;
-  h5::Id file_;
   std::vector<FrameRecord> frames_;
   std::map<std::string, LastMesh> last_;
 };
