@@ -427,6 +427,9 @@ std::optional<Cells> read_cells(Table& top, const Domain& d, bool has_vessel) {
     c.count = n;
   }
   if (!c.count && !c.hematocrit) c.count = 1;
+  if (d.kind == DomainKind::free && c.positions.empty()) {
+    t->fail_table("cells in a free domain need positions (e.g. positions = [[0, 0, 0]])");
+  }
   if (!c.orientations.empty()) {
     if (c.positions.empty()) t->fail("orientations", "orientations need positions");
     if (static_cast<int>(c.orientations.size()) != n) {

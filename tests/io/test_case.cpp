@@ -331,6 +331,8 @@ TEST(Case, InconsistentKeysAreErrors) {
   EXPECT_EQ(error_of(minimal("[cells]\ncount = 2\nhematocrit = 0.2\n")),
             "bad.toml:6: cells.hematocrit: give count or hematocrit, not both");
   EXPECT_TRUE(contains(error_of(minimal("[cells]\nhematocrit = 0.2\n")), "needs a [vessel]"));
+  EXPECT_EQ(error_of("[domain]\nkind = \"free\"\n[cells]\ncount = 2\n"),
+            "bad.toml:3: [cells]: cells in a free domain need positions (e.g. positions = [[0, 0, 0]])");
   EXPECT_EQ(error_of(minimal("[cells]\ncount = 3\npositions = [[1, 1, 1], [2, 2, 2]]\n")),
             "bad.toml:5: cells.count: 3 cells but 2 positions");
   EXPECT_TRUE(contains(error_of(minimal("[cells]\npositions = [[1, 1, 1]]\norientations = [[0, 0, 0]]\n")),
