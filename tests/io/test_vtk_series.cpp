@@ -120,5 +120,6 @@ TEST(VtkSeries, MissingOrForeignCollectionIsAClearError) {
   }
   { VtkSeriesWriter fresh(dir); }
   EXPECT_THROW(read_vtk_frame(dir), std::runtime_error);  // no frames yet
+  EXPECT_THROW(VtkSeriesWriter("/dev/null/out"), std::runtime_error);  // cannot be a directory
   fs::remove_all(dir);
 }
