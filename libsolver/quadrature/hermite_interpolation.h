@@ -1,0 +1,57 @@
+#pragma once
+// Bicubic Hermite interpolation of spherical-harmonic fields on a uniform (theta, phi) grid
+// (section 5.4): values and the derivatives f_theta, f_phi, f_theta_phi at the grid nodes
+// come exactly from the expansion, and on each grid cell the field is the bicubic with that
+// data. The grid includes both poles; f(theta, phi) is smooth on the parameter rectangle, so
+// no pole needs special care. O(h^4) accurate.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+
+#include "geometry/sph_transform.h"
+
+namespace rbcflow {
+
+// Where a point (theta, phi) falls on the uniform grid, with its 16 Hermite weights.
+struct HermiteStencil {
+  int cell = 0;                       // i * n_phi + j of the cell's (theta_i, phi_j) corner
+  std::array<double, 16> weights{};   // corner (a, b) in {0,1}^2, data type d: 4 (2a + b) + d
+};
+
+class HermiteInterpolator {
+ public:
+  // Fields of order <= `order`, on a uniform grid of refinement r: (r N + 1) x 2 r N.
+  HermiteInterpolator(int order, int refinement);
+
+  int order() const { return transform_->order(); }
+  int n_theta() const { return transform_->grid().n_theta(); }
+  int n_phi() const { return transform_->grid().n_phi(); }
+
+  // Node data of an expansion: (grid size x 4 k), column 4 c + d for component c and data
+  // type d = value, d/dtheta, d/dphi, d2/dtheta dphi.
+  Eigen::MatrixXd node_data(const SHCoeffs& c) const;
+
+  HermiteStencil stencil(double theta, double phi) const;
+
+  // Interpolated components at a stencil (k = data.cols() / 4 values).
+  template <typename Out>
+  void interpolate(const Eigen::MatrixXd& data, const HermiteStencil& s, Out&& out) const {
+    const int k = static_cast<int>(data.cols() / 4);
+    const int i = s.cell / n_phi(), j = s.cell % n_phi();
+    const int nodes[4] = {i * n_phi() + j, i * n_phi() + (j + 1) % n_phi(), (i + 1) * n_phi() + j,
+                          (i + 1) * n_phi() + (j + 1) % n_phi()};
+    for (int c = 0; c < k; ++c) {
+      double v = 0.0;
+      for (int corner = 0; corner < 4; ++corner) {
+        for (int d = 0; d < 4; ++d) v += s.weights[4 * corner + d] * data(nodes[corner], 4 * c + d);
+      }
+      out[c] = v;
+    }
+  }
+
+ private:
+  std::shared_ptr<const SHTransform> transform_;
+  double dtheta_, dphi_;
+};
+
+}  // namespace rbcflow

@@ -1,0 +1,69 @@
+#include "polar_patch.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "geometry/gauss_legendre.h"
+
+namespace rbcflow {
+
+double patch_mask(double rho, double rho1) {
+  const double t = rho / rho1;
+  if (t <= 0.0) return 1.0;
+  if (t >= 1.0) return 0.0;
+  return std::exp(2.0 * std::exp(-1.0 / t) / (t - 1.0));
+}
+
+double great_circle_distance(double theta1, double phi1, double theta2, double phi2) {
+  // Haversine-free but accurate form: atan2(|u1 x u2|, u1 . u2).
+  const Eigen::Vector3d u1(std::sin(theta1) * std::cos(phi1), std::sin(theta1) * std::sin(phi1), std::cos(theta1));
+  const Eigen::Vector3d u2(std::sin(theta2) * std::cos(phi2), std::sin(theta2) * std::sin(phi2), std::cos(theta2));
+  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
+}
+
+std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int n_rho, int n_varphi,
+                                    double delta) {
+  if (rho1 <= 0 || rho1 > std::numbers::pi || n_rho < 1 || n_varphi < 1 || delta < 0) {
+    throw std::invalid_argument("polar_patch: bad radius, point counts or distance");
+  }
+  // Orthonormal frame (e1, e2, u0) at the centre.
+  const Eigen::Vector3d u0(std::sin(theta0) * std::cos(phi0), std::sin(theta0) * std::sin(phi0), std::cos(theta0));
+  const Eigen::Vector3d helper = std::abs(u0.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d e1 = helper.cross(u0).normalized(), e2 = u0.cross(e1);
+
+  const GaussLegendreRule g = gauss_legendre(n_rho);
+  std::vector<double> rho(n_rho), w_rho(n_rho);
+  const double mu = delta > 0 ? std::asinh(rho1 / delta) : 0.0;
+  for (int a = 0; a < n_rho; ++a) {
+    // Gauss nodes on [-1, 1] are x = cos(theta): ascending theta gives descending x.
+    const double s = std::cos(g.theta[a]);
+    if (delta > 0) {
+      const double arg = 0.5 * mu * (s + 1.0);
+      rho[a] = delta * std::sinh(arg);
+      w_rho[a] = g.weights[a] * delta * std::cosh(arg) * 0.5 * mu;
+    } else {
+      rho[a] = 0.5 * rho1 * (s + 1.0);
+      w_rho[a] = 0.5 * rho1 * g.weights[a];
+    }
+  }
+  std::vector<PatchPoint> points;
+  points.reserve(static_cast<std::size_t>(n_rho) * n_varphi);
+  const double w_varphi = 2.0 * std::numbers::pi / n_varphi;
+  for (int b = 0; b < n_varphi; ++b) {
+    const double varphi = w_varphi * (b + 0.5);
+    const Eigen::Vector3d dir = std::cos(varphi) * e1 + std::sin(varphi) * e2;
+    for (int a = 0; a < n_rho; ++a) {
+      const Eigen::Vector3d u = std::cos(rho[a]) * u0 + std::sin(rho[a]) * dir;
+      double phi = std::atan2(u.y(), u.x());
+      if (phi < 0) phi += 2 * std::numbers::pi;
+      points.push_back({std::acos(std::clamp(u.z(), -1.0, 1.0)), phi, rho[a],
+                        patch_mask(rho[a], rho1) * std::sin(rho[a]) * w_rho[a] * w_varphi});
+    }
+  }
+  return points;
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,192 @@
+#include "singular_quadrature.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "libsolver/quadrature/polar_patch.h"
+
+namespace rbcflow {
+namespace {
+
+std::array<double, 6> pack(const Eigen::Matrix3d& k) {
+  return {k(0, 0), k(0, 1), k(0, 2), k(1, 1), k(1, 2), k(2, 2)};
+}
+
+Eigen::Vector3d times(const std::array<double, 6>& k, const Eigen::Vector3d& v) {
+  return {k[0] * v[0] + k[1] * v[1] + k[2] * v[2], k[1] * v[0] + k[3] * v[1] + k[4] * v[2],
+          k[2] * v[0] + k[4] * v[1] + k[5] * v[2]};
+}
+
+}  // namespace
+
+int default_radial_points(int order) {
+  return std::max(8, static_cast<int>(std::ceil(2.0 * std::sqrt(static_cast<double>(order)))));
+}
+
+CellQuadratureGeometry::CellQuadratureGeometry(const SHCoeffs& x, std::shared_ptr<const CellGrids> grids,
+                                               const QuadratureOptions& options)
+    : grids_(std::move(grids)), options_(options) {
+  if (!grids_) throw std::invalid_argument("CellQuadratureGeometry: no grids");
+  const int N = grids_->order;
+  if (x.order() > N || x.components() != 3) {
+    throw std::invalid_argument("CellQuadratureGeometry: need 3-component coefficients of order <= " + std::to_string(N));
+  }
+  if (options_.spline_refinement < 1 || options_.patch_radius_factor <= 0) {
+    throw std::invalid_argument("CellQuadratureGeometry: bad quadrature options");
+  }
+  x_ = x.resampled(N);
+  const SurfaceGeometry g = surface_geometry(x_, *grids_->n_grid);
+  nodes_.x = g.x;
+  nodes_.normal = g.normal;
+  nodes_.weight = g.area_weight;
+
+  // J n = (a1 x a2) / sin(theta): smooth on the sphere; its expansion to order 2N (or the
+  // Hermite grid's limit) from a 2N Gauss grid.
+  const int r = options_.spline_refinement;
+  const int jn_order = std::min(2 * N, r * N);
+  const SHTransform fine(jn_order, SphGrid::gauss(jn_order), 1);
+  const Eigen::MatrixXd a1 = fine.synthesize(x_, 1, 0), a2 = fine.synthesize(x_, 0, 1);
+  Eigen::MatrixXd jn(fine.grid().size(), 3);
+  for (int p = 0; p < fine.grid().size(); ++p) {
+    const double s = std::sin(fine.grid().theta()[p / fine.grid().n_phi()]);
+    jn.row(p) = Eigen::Vector3d(a1.row(p)).cross(Eigen::Vector3d(a2.row(p))) / s;
+  }
+  jn_ = fine.analyze(jn);
+  interp_ = std::make_shared<const HermiteInterpolator>(r * N, 1);
+  if (!options_.spectral_interpolation) {
+    x_data_ = interp_->node_data(x_);
+    jn_data_ = interp_->node_data(jn_);
+  }
+  rho1_ = std::min(std::numbers::pi, options_.patch_radius_factor * std::numbers::pi / std::sqrt(double(N)));
+  h_ = std::sqrt(surface_area(g)) / N;
+  near_ = options_.near_factor * std::sqrt(h_);
+}
+
+std::vector<QuadratureTarget> CellQuadratureGeometry::node_targets() const {
+  const SphGrid& grid = grids_->n_grid->grid();
+  std::vector<QuadratureTarget> t(grid.size());
+  for (int p = 0; p < grid.size(); ++p) {
+    t[p].x = nodes_.x.row(p);
+    t[p].theta = grid.theta()[p / grid.n_phi()];
+    t[p].phi = grid.phi(p % grid.n_phi());
+    t[p].self_node = p;
+  }
+  return t;
+}
+
+void CellQuadratureGeometry::geometry_at(double theta, double phi, Eigen::Vector3d& x, Eigen::Vector3d& jn) const {
+  if (options_.spectral_interpolation) {
+    x = sh_evaluate(x_, theta, phi).transpose();
+    jn = sh_evaluate(jn_, theta, phi).transpose();
+    return;
+  }
+  const HermiteStencil s = interp_->stencil(theta, phi);
+  interp_->interpolate(x_data_, s, x);
+  interp_->interpolate(jn_data_, s, jn);
+}
+
+LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
+                                 std::vector<QuadratureTarget> targets)
+    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)) {
+  const QuadratureOptions& o = cell_->options();
+  const int N = cell_->grids().order;
+  const int n_rho = o.radial_points > 0 ? o.radial_points : default_radial_points(N);
+  const int n_varphi = o.angular_points > 0 ? o.angular_points : 2 * n_rho;
+  const double rho1 = cell_->patch_radius();
+  const SphGrid& grid = cell_->grids().n_grid->grid();
+  const SourceNodes& nodes = cell_->nodes();
+  const bool single = kernel_.layer == Layer::single;
+  patch_.resize(targets_.size());
+  nodes_.resize(targets_.size());
+
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int t = 0; t < num_targets(); ++t) {
+    const QuadratureTarget& target = targets_[t];
+    // The patch centre as the interpolant sees it: r = x_q - x0 is measured from it so that
+    // the kernel's singularity sits exactly at rho = 0 (an offset of the interpolation error
+    // would spoil r . n ~ rho^2 in the double layer). Off-surface targets keep their offset.
+    Eigen::Vector3d xc, jc;
+    cell_->geometry_at(target.theta, target.phi, xc, jc);
+    const Eigen::Vector3d x0 = target.self_node >= 0 ? xc : Eigen::Vector3d(target.x);
+    // Parametric distance of an off-surface target: distance over the local length scale.
+    const double delta = target.distance > 0 ? target.distance / std::sqrt(jc.norm()) : 0.0;
+    const std::vector<PatchPoint> pts = polar_patch(target.theta, target.phi, rho1, n_rho, n_varphi, delta);
+    auto& patch = patch_[t];
+    patch.reserve(pts.size());
+    for (const PatchPoint& q : pts) {
+      if (q.weight == 0.0) continue;
+      Eigen::Vector3d xq, jn;
+      cell_->geometry_at(q.theta, q.phi, xq, jn);
+      const Eigen::Vector3d r = xq - x0;
+      const Eigen::Matrix3d k = single ? Eigen::Matrix3d(kernel_.matrix(r, jn) * (jn.norm() * q.weight))
+                                       : Eigen::Matrix3d(kernel_.matrix(r, jn * q.weight));
+      patch.push_back({q.theta, q.phi, pack(k)});
+    }
+    // The regular rule's share of the patch, eta K w at the nodes inside it, is removed.
+    for (int p = 0; p < grid.size(); ++p) {
+      if (p == target.self_node) continue;
+      const double rho = great_circle_distance(target.theta, target.phi, grid.theta()[p / grid.n_phi()],
+                                               grid.phi(p % grid.n_phi()));
+      if (rho >= rho1) continue;
+      const double eta = patch_mask(rho, rho1);
+      const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
+      const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
+      const Eigen::Matrix3d k = single ? Eigen::Matrix3d(kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
+                                       : Eigen::Matrix3d(kernel_.matrix(r, m) * (-eta));
+      nodes_[t].push_back({p, pack(k)});
+    }
+  }
+}
+
+Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density) const {
+  const CellGrids& grids = cell_->grids();
+  if (density.rows() != grids.n_grid->grid().size() || density.cols() != 3) {
+    throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3)");
+  }
+  return apply(density, grids.n_grid->analyze(density));
+}
+
+Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHCoeffs& c) const {
+  if (density.rows() != cell_->grids().n_grid->grid().size() || density.cols() != 3 ||
+      c.components() != 3 || c.order() > cell_->interpolator().order()) {
+    throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3) with an expansion of order <= " +
+                                std::to_string(cell_->interpolator().order()));
+  }
+  const bool spectral = cell_->options().spectral_interpolation;
+  const HermiteInterpolator& interp = cell_->interpolator();
+  const Eigen::MatrixXd data = spectral ? Eigen::MatrixXd() : interp.node_data(c);
+  Eigen::MatrixXd out(num_targets(), 3);
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < num_targets(); ++t) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const PatchEntry& e : patch_[t]) {
+      Eigen::Vector3d psi;
+      if (spectral) {
+        psi = sh_evaluate(c, e.theta, e.phi).transpose();
+      } else {
+        interp.interpolate(data, interp.stencil(e.theta, e.phi), psi);
+      }
+      sum += times(e.k, psi);
+    }
+    for (const NodeEntry& e : nodes_[t]) sum += times(e.k, Eigen::Vector3d(density.row(e.node)));
+    out.row(t) = sum;
+  }
+  return out;
+}
+
+Eigen::MatrixXd free_space_layer_on_nodes(const std::shared_ptr<const CellQuadratureGeometry>& cell,
+                                          Layer layer, const Eigen::MatrixXd& density,
+                                          const SHCoeffs& patch_density) {
+  const LayerKernel kernel{layer, 0.0};
+  const std::vector<QuadratureTarget> targets = cell->node_targets();
+  std::vector<int> self(targets.size());
+  for (std::size_t t = 0; t < targets.size(); ++t) self[t] = targets[t].self_node;
+  const Eigen::MatrixXd x0 = cell->nodes().x;
+  const LayerCorrection correction(cell, kernel, targets);
+  return regular_layer_sum(cell->nodes(), density, kernel, x0, self) +
+         (patch_density.order() > 0 ? correction.apply(density, patch_density) : correction.apply(density));
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,113 @@
+#pragma once
+// Singular and nearly-singular integration on a spherical-harmonic cell by the floating
+// partition of unity (section 5.4, eq. 31-33). For each target the accurate integral is
+//   I = I_1 (polar patch around the target or its projection, eq. 33)
+//     + I_2 (regular rule (30) with weights (1 - eta)),
+// and what this module returns is the correction I - (regular rule over the cell's nodes), so
+// that the caller's regular sums (direct, or SPME + real space) stay untouched:
+//   correction = I_1 - sum_{nodes in the patch, not the target itself} eta K psi w.
+// The accuracy of I_2 is set by how well the grid resolves (1 - eta) K, which varies on the
+// patch scale rho_1: the paper's rho_1 = pi / sqrt(N) gives O(h^3); a larger patch (factor)
+// is more accurate and costs more points. (Summing I_2 on a finer grid inside a sharp patch
+// boundary does not help: the cut is a discontinuity.)
+// Everything that depends only on geometry (patch points, interpolation stencils, kernel
+// matrices) is built once per time step; apply() is linear in the density and is what every
+// GMRES product calls.
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "geometry/cell_grids.h"
+#include "geometry/sh_surface.h"
+#include "libsolver/quadrature/hermite_interpolation.h"
+#include "libsolver/quadrature/layer_kernel.h"
+#include "libsolver/quadrature/regular_quadrature.h"
+
+namespace rbcflow {
+
+struct QuadratureOptions {
+  double patch_radius_factor = 2.0;  // rho_1 = factor * pi / sqrt(N) (the paper: factor 1)
+  int radial_points = 0;             // points in rho; 0: default (see default_radial_points)
+  int angular_points = 0;            // points in the patch angle; 0: 2 x radial
+  int spline_refinement = 2;         // Hermite grid (r N + 1) x 2 r N
+  bool spectral_interpolation = false;  // evaluate the expansions exactly at patch points
+  double near_factor = 1.0;          // nearly singular when d < near_factor sqrt(h)
+};
+int default_radial_points(int order);
+
+// A target of one source cell's corrections.
+struct QuadratureTarget {
+  Eigen::Vector3d x;      // the target point
+  double theta = 0, phi = 0;  // patch centre: the node's parameters, or the projection's
+  double distance = 0;    // 0 for points on the surface, |x - projection| otherwise
+  int self_node = -1;     // the cell's node that coincides with x (on-surface targets), or -1
+};
+
+// Geometry of one cell shared by all its corrections: the nodes, the Hermite data of x and of
+// the area vector J n = (a1 x a2) / sin(theta) (dA n = J n dOmega), and the patch radius.
+class CellQuadratureGeometry {
+ public:
+  CellQuadratureGeometry(const SHCoeffs& x, std::shared_ptr<const CellGrids> grids,
+                         const QuadratureOptions& options = {});
+
+  const SHCoeffs& coeffs() const { return x_; }
+  const CellGrids& grids() const { return *grids_; }
+  const QuadratureOptions& options() const { return options_; }
+  const SourceNodes& nodes() const { return nodes_; }
+  double patch_radius() const { return rho1_; }
+  double mesh_size() const { return h_; }              // h = sqrt(A / N^2)
+  double near_distance() const { return near_; }       // targets closer than this need a patch
+  // On-surface targets: every node of the cell.
+  std::vector<QuadratureTarget> node_targets() const;
+
+  // x and J n at a point of the parameter sphere (Hermite or spectral, per the options).
+  void geometry_at(double theta, double phi, Eigen::Vector3d& x, Eigen::Vector3d& jn) const;
+  const HermiteInterpolator& interpolator() const { return *interp_; }
+
+ private:
+  SHCoeffs x_, jn_;
+  std::shared_ptr<const CellGrids> grids_;
+  QuadratureOptions options_;
+  SourceNodes nodes_;
+  std::shared_ptr<const HermiteInterpolator> interp_;
+  Eigen::MatrixXd x_data_, jn_data_;
+  double rho1_ = 0, h_ = 0, near_ = 0;
+};
+
+class LayerCorrection {
+ public:
+  LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
+                  std::vector<QuadratureTarget> targets);
+
+  int num_targets() const { return static_cast<int>(targets_.size()); }
+  const std::vector<QuadratureTarget>& targets() const { return targets_; }
+  // Correction at every target for the density given at the cell's nodes (nodes x 3); the
+  // patch sees its expansion of order N (exact for the band-limited densities of the solver).
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& density) const;
+  // The same with the patch's density given by its own expansion (order <= 2N), for densities
+  // that are not band-limited to N, such as the normal in the identities of section 8.
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const SHCoeffs& patch_density) const;
+
+ private:
+  struct PatchEntry {
+    double theta, phi;
+    std::array<double, 6> k;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
+  };
+  struct NodeEntry {
+    int node;
+    std::array<double, 6> k;
+  };
+  std::shared_ptr<const CellQuadratureGeometry> cell_;
+  LayerKernel kernel_;
+  std::vector<QuadratureTarget> targets_;
+  std::vector<std::vector<PatchEntry>> patch_;
+  std::vector<std::vector<NodeEntry>> nodes_;  // nodes in the patch: -eta K w
+};
+
+// Free-space layer potential of one cell at its own nodes: regular rule + corrections.
+// (patch_density: as in LayerCorrection::apply; empty means the order-N expansion.)
+Eigen::MatrixXd free_space_layer_on_nodes(const std::shared_ptr<const CellQuadratureGeometry>& cell,
+                                          Layer layer, const Eigen::MatrixXd& density,
+                                          const SHCoeffs& patch_density = {});
+
+}  // namespace rbcflow

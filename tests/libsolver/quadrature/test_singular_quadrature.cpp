@@ -1,0 +1,144 @@
+// Validation of the singular and nearly-singular quadrature (section 5.4, REFERENCES.md
+// sections 1 and 3). The full convergence table of Fig. 3 is in the slow test next to this.
+#include "libsolver/quadrature/singular_quadrature.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+#include "geometry/surface_projection.h"
+#include "libsolver/spme/ewald_parameters.h"
+#include "libsolver/spme/ewald_plan.h"
+#include "quadrature_test_support.h"
+
+using namespace rbcflow;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+}
+
+TEST(SingularQuadrature, Figure3IdentitiesConvergeAtLowOrders) {
+  // Fast version of Fig. 3 (N = 8 .. 16): errors fall at better than third order.
+  std::printf("   N    single layer (38)   double layer (39)\n");
+  double prev_s = 0, prev_d = 0;
+  for (int N : {8, 16}) {
+    const auto e = quadrature_test::section8_identity_errors(
+        make_squeezed_ellipsoid(N, squeezed_ellipsoid_default_rotation()), N, quadrature_test::accurate_options());
+    std::printf("  %2d    %.3e           %.3e\n", N, e.single, e.double_);
+    if (prev_s > 0) {
+      EXPECT_GT(prev_s / e.single, 8.0);  // 2^3
+      EXPECT_GT(prev_d / e.double_, 8.0);
+    }
+    prev_s = e.single;
+    prev_d = e.double_;
+  }
+}
+
+TEST(SingularQuadrature, NearlySingularTargetsOffRedCellAndSqueezedEllipsoid) {
+  // Targets at distance d along the normal, outside and inside (inside only where the shape
+  // is thicker than 2 d: near the red cell's rim, on the ellipsoid's bulbs). Single layer of n:
+  // 0; double layer of a constant U: 0 outside, -8 pi U inside. Errors relative to 8 pi.
+  const int N = 16;
+  const Eigen::Matrix3d R = squeezed_ellipsoid_default_rotation();
+  struct Shape {
+    SHSurface s;
+    std::vector<std::pair<double, double>> params;
+  };
+  std::vector<Shape> shapes(2);
+  shapes[0].s = make_biconcave(N);
+  shapes[0].params = {{1.3, 0.3}, {1.57, 2.0}, {1.85, 4.4}};
+  shapes[1].s = make_squeezed_ellipsoid(N, R);
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0.6, 0.2, 0.77), Eigen::Vector3d(-0.5, 0.6, -0.62), Eigen::Vector3d(0.2, -0.9, 0.38)}) {
+    const Eigen::Vector3d u = R.transpose() * v.normalized();
+    shapes[1].params.emplace_back(std::acos(u.z()), std::atan2(u.y(), u.x()));
+  }
+  for (const Shape& shape : shapes) {
+    auto cell = std::make_shared<const CellQuadratureGeometry>(shape.s.coeffs(), CellGrids::make(N, N), quadrature_test::accurate_options());
+    const SourceNodes& nodes = cell->nodes();
+    const SHCoeffs n_coeffs = quadrature_test::normal_coeffs(shape.s.coeffs(), 2 * N);
+    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(nodes.size(), 3);
+    U.col(0).setOnes();
+    std::printf("  near distance sqrt(h) = %.3f\n   d      single/8pi  (regular)    double/8pi  (regular)\n", cell->near_distance());
+    for (double d : {0.5, 0.2, 0.1, 0.05, 0.02, 0.01}) {
+      double worst[2] = {0, 0}, regular[2] = {0, 0};
+      for (double side : {1.0, -1.0}) {
+        if (side < 0 && d > 0.2) continue;
+        for (auto [t, p] : shape.params) {
+          const Eigen::Vector3d xs = sh_evaluate(shape.s.coeffs(), t, p).transpose();
+          const Eigen::Vector3d a1 = sh_evaluate(shape.s.coeffs(), t, p, 1, 0).transpose();
+          const Eigen::Vector3d a2 = sh_evaluate(shape.s.coeffs(), t, p, 0, 1).transpose();
+          const Eigen::Vector3d x0 = xs + side * d * a1.cross(a2).normalized();
+          const SurfaceProjection proj = project_onto_surface(shape.s.coeffs(), x0, t, p);
+          QuadratureTarget target;
+          target.x = x0;
+          target.theta = proj.theta;
+          target.phi = proj.phi;
+          target.distance = proj.distance;
+          for (int layer = 0; layer < 2; ++layer) {
+            const LayerKernel k{layer == 0 ? Layer::single : Layer::double_, 0.0};
+            const Eigen::MatrixXd density = layer == 0 ? Eigen::MatrixXd(nodes.normal) : U;
+            const Eigen::Vector3d reg = regular_layer_sum(nodes, density, k, x0.transpose()).row(0).transpose();
+            Eigen::Vector3d full = reg;
+            if (d < cell->near_distance()) {
+              const LayerCorrection c(cell, k, {target});
+              full += (layer == 0 ? c.apply(density, n_coeffs) : c.apply(density)).row(0).transpose();
+            }
+            const Eigen::Vector3d expected = (layer == 1 && side < 0) ? Eigen::Vector3d(-8 * pi, 0, 0) : Eigen::Vector3d::Zero();
+            worst[layer] = std::max(worst[layer], (full - expected).norm() / (8 * pi));
+            regular[layer] = std::max(regular[layer], (reg - expected).norm() / (8 * pi));
+          }
+        }
+      }
+      std::printf("  %.2f   %.2e   (%.1e)    %.2e   (%.1e)\n", d, worst[0], regular[0], worst[1], regular[1]);
+      EXPECT_LT(worst[0], 1e-4) << "d = " << d;
+      EXPECT_LT(worst[1], 1e-4) << "d = " << d;
+      if (d == 0.01) {
+        EXPECT_GT(regular[0], 1e-2) << "the regular rule alone should fail this close";
+        EXPECT_GT(regular[1], 1e-2);
+      }
+    }
+  }
+}
+
+TEST(SingularQuadrature, TranslatingSphereInFreeSpace) {
+  // A rigid sphere (a = 1) translating with U exerts the uniform traction 3 U / (2 a) on the
+  // fluid; the single layer (1 / 8 pi) integral G f dS gives U at every node.
+  const int N = 16;
+  auto cell = std::make_shared<const CellQuadratureGeometry>(make_sphere(N).coeffs(), CellGrids::make(N, N),
+                                                            quadrature_test::accurate_options());
+  const Eigen::Vector3d U(0.3, -1.0, 0.5);
+  const Eigen::MatrixXd f = (1.5 * U).transpose().replicate(cell->nodes().size(), 1);
+  const Eigen::MatrixXd u = free_space_layer_on_nodes(cell, Layer::single, f) / (8 * pi);
+  const double err = (u.rowwise() - U.transpose()).cwiseAbs().maxCoeff() / U.norm();
+  std::printf("  max relative velocity error at N = %d: %.2e\n", N, err);
+  EXPECT_LT(err, 1e-6);
+}
+
+TEST(SingularQuadrature, SphereInPeriodicArrayMatchesHasimoto) {
+  // Uniform traction on a sphere (a = 1) in a cubic box of side L: the mean surface velocity
+  // gives K = F / (6 pi U) = 1.53022 (L = 8) and 1.38805 (L = 10) (REFERENCES section 3).
+  // Ewald: SPME + real-space regular rule + singular corrections of the real-space kernel.
+  const int N = 16;
+  const SHSurface sphere = make_sphere(N);
+  for (auto [L, K_ref] : {std::pair{8.0, 1.53022}, {10.0, 1.38805}}) {
+    SHSurface s = sphere;
+    s.translate(Eigen::Vector3d::Constant(L / 2));
+    auto cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), CellGrids::make(N, N));
+    const SourceNodes& nodes = cell->nodes();
+    const PeriodicBox box(Eigen::Vector3d::Constant(L));
+    const EwaldChoice choice = choose_ewald_parameters(EwaldKernel::stokeslet, 1e-9, box, nodes.size());
+    auto grid = std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
+    EwaldPlan plan(grid, nodes.x);
+    const Eigen::Vector3d F(0.0, 0.0, 1.0);  // total force on the fluid
+    const Eigen::MatrixXd f = (F / (4 * pi)).transpose().replicate(nodes.size(), 1);
+    const PointField weighted = f.array().colwise() * nodes.weight.array();
+    const LayerCorrection correction(cell, LayerKernel{Layer::single, choice.parameters.xi}, cell->node_targets());
+    const Eigen::MatrixXd u = (plan.single_layer(weighted) + correction.apply(f)) / (8 * pi);
+    const Eigen::Vector3d mean = (u.array().colwise() * nodes.weight.array()).colwise().sum() / nodes.weight.sum();
+    const double K = F.norm() / (6 * pi * mean.z());
+    std::printf("  L = %4.1f: K = %.6f (reference %.5f), transverse %.1e\n", L, K, K_ref, mean.head<2>().norm());
+    EXPECT_NEAR(K, K_ref, 1e-4);
+  }
+}
