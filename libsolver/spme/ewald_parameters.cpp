@@ -14,20 +14,21 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr int kMaxGridSide = 2048;
-// Memory limits: grids of at most 2^25 points (up to 120 bytes each in work arrays, 4 GB) and
-// at most 5e8 real-space pairs (6 bytes each in the neighbour list, 3 GB).
-constexpr double kMaxGridPoints = 33554432.0;
-constexpr double kMaxPairs = 5e8;
+// Memory limits: grids of at most 2^26 points (up to 120 bytes each in work arrays, 8 GB) and
+// at most 1e9 real-space pairs (6 bytes each in the neighbour list, 6 GB).
+constexpr double kMaxGridPoints = 67108864.0;
+constexpr double kMaxPairs = 1e9;
 
-// Measured costs of one product on the 2-core development machine, 1 thread
-// (bench/bench_spme.cpp): seconds per real-space pair, per grid node and density component
-// of spreading or interpolation, per component of a transform of K points per K log2 K, per
-// complex mode of the influence function.
+// Costs of one product measured on the 2-core development machine, 1 thread, under load
+// (bench/bench_spme.cpp stages, minimum of 5 products, 2e4 to 1e5 random points, p = 6 .. 10):
+// seconds per real-space pair, per grid node and density component of spreading or
+// interpolation, per component of a transform of K points per K log2 K (FFTW_ESTIMATE plans,
+// the default; FFTW_MEASURE plans run ~1.5x faster), per complex mode of the influence function.
 struct CostModel {
   double pair, node, fft, mode;
 };
-constexpr CostModel kCostStokeslet{55e-9, 0.9e-9, 1.0e-9, 10e-9};
-constexpr CostModel kCostStresslet{60e-9, 0.9e-9, 1.0e-9, 20e-9};
+constexpr CostModel kCostStokeslet{40e-9, 0.75e-9, 0.5e-9, 5e-9};
+constexpr CostModel kCostStresslet{55e-9, 0.9e-9, 0.5e-9, 12e-9};
 
 bool is_fft_friendly(int n) {
   for (int f : {2, 3, 5, 7})

@@ -5,13 +5,23 @@
 // (FFT plans and influence function in the shared SpmeGrid; B-spline stencils, neighbour lists
 // and work arrays here); only the densities change between products.
 //
+//   const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, n);
+//   auto grid = std::make_shared<const SpmeGrid>(box, c.parameters, FftPlanning::measure);
+//   EwaldPlan plan(grid, sources, targets);   // once per geometry (time step)
+//   PointField u = plan.single_layer(f);      // every GMRES iteration
+//
 // Normalisation (REFERENCES.md sections 1-2), densities with their quadrature weights:
 //   single_layer: u(x_t) = sum_s G^per(x_s - x_t) f_s               (= 8 pi mu u),
 //   double_layer: u_i(x_t) = sum_s T^per_ijk(x_s - x_t) q_s,j n_s,k,
 // G^per and T^per the periodic kernels with the k = 0 mode removed; T^per is the periodic part
-// of eq. (3), whose linear part is double_layer_linear_part(). Source-target pairs at r = 0
-// (a target that is also a source) leave out the real-space term of that pair, which the
-// singular quadrature supplies; their smooth term is included.
+// of eq. (3), whose linear part is double_layer_linear_part().
+//
+// Coincident points: a target that is also a source (r = 0) gets that source's smooth term but
+// not its singular real-space term, which the singular quadrature supplies. The single layer at
+// such a target therefore depends on xi; adding ewald_real_stokeslet_self(xi) f_t gives the
+// xi-independent regular part (the double layer needs nothing: lim T^R - T = 0).
+//
+// Products modify work arrays: one thread at a time per plan; each product is OpenMP-parallel.
 #include <memory>
 
 #include "neighbor_list.h"

@@ -1,0 +1,98 @@
+// Periodic single- and double-layer products by Ewald splitting (issue 4): N random points in
+// the unit cube (sources = targets), tolerance 1e-6, parameters from choose_ewald_parameters,
+// the plan (FFTW_ESTIMATE plans, stencils, neighbour lists) built once outside the timed loop, as
+// in a GMRES solve. Counters: the stages of one product in ms (real space, spreading, FFT,
+// influence, interpolation), the plan's setup time, and the chosen parameters.
+//   build/bin/bench_spme --benchmark_filter=Layer/            10^4 and 10^5 points
+//   build/bin/bench_spme --benchmark_filter=Million           10^6 points (minutes, ~10 GB)
+// Arguments: points, OpenMP threads.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <chrono>
+#include <memory>
+#include <random>
+
+#include "libsolver/spme/ewald_plan.h"
+
+using namespace rbcflow;
+
+namespace {
+
+PointField random_field(int n, unsigned seed, bool unit_cube) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 1.0);
+  PointField x(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) x(i, d) = unit_cube ? u(gen) : g(gen);
+  return x;
+}
+
+void run_product(benchmark::State& state, EwaldKernel kernel) {
+  const int n = static_cast<int>(state.range(0));
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  const PeriodicBox box(Eigen::Vector3d::Ones());
+  const PointField x = random_field(n, 1, true), f = random_field(n, 2, false);
+  const PointField normals = random_field(n, 3, false).rowwise().normalized();
+  const EwaldChoice choice = choose_ewald_parameters(kernel, 1e-6, box, n);
+
+  const auto start = std::chrono::steady_clock::now();
+  EwaldPlan plan(std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate),
+                 x);
+  const double setup =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  EwaldTimings total;
+  for (auto _ : state) {
+    PointField u =
+        kernel == EwaldKernel::stokeslet ? plan.single_layer(f) : plan.double_layer(f, normals);
+    benchmark::DoNotOptimize(u.data());
+    const EwaldTimings& t = plan.timings();
+    total.real_space += t.real_space;
+    total.smooth.spreading += t.smooth.spreading;
+    total.smooth.fft += t.smooth.fft;
+    total.smooth.influence += t.smooth.influence;
+    total.smooth.interpolation += t.smooth.interpolation;
+  }
+  const double ms = 1e3 / static_cast<double>(state.iterations());
+  state.counters["real_ms"] = total.real_space * ms;
+  state.counters["spread_ms"] = total.smooth.spreading * ms;
+  state.counters["fft_ms"] = total.smooth.fft * ms;
+  state.counters["influence_ms"] = total.smooth.influence * ms;
+  state.counters["interp_ms"] = total.smooth.interpolation * ms;
+  state.counters["setup_ms"] = 1e3 * setup;
+  state.counters["K"] = choice.parameters.grid[0];
+  state.counters["p"] = choice.parameters.order;
+  state.counters["neighbours"] = choice.neighbours_per_target;
+  state.counters["xi"] = choice.parameters.xi;
+  omp_set_num_threads(threads);
+}
+
+void BM_SingleLayer(benchmark::State& state) { run_product(state, EwaldKernel::stokeslet); }
+void BM_DoubleLayer(benchmark::State& state) { run_product(state, EwaldKernel::stresslet); }
+void BM_SingleLayerMillion(benchmark::State& state) { run_product(state, EwaldKernel::stokeslet); }
+void BM_DoubleLayerMillion(benchmark::State& state) { run_product(state, EwaldKernel::stresslet); }
+
+void small_sizes(benchmark::internal::Benchmark* b) {
+  for (int n : {10000, 100000})
+    for (int threads : {1, 2}) b->Args({n, threads});
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+void million(benchmark::internal::Benchmark* b) {
+  b->Args({1000000, 1})
+      ->Args({1000000, 2})
+      ->Iterations(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+}
+
+}  // namespace
+
+BENCHMARK(BM_SingleLayer)->Apply(small_sizes);
+BENCHMARK(BM_DoubleLayer)->Apply(small_sizes);
+BENCHMARK(BM_SingleLayerMillion)->Apply(million);
+BENCHMARK(BM_DoubleLayerMillion)->Apply(million);
+
+BENCHMARK_MAIN();
