@@ -1,0 +1,136 @@
+#include "cell_layers.h"
+
+#include <stdexcept>
+
+#include "geometry/surface_projection.h"
+#include "libsolver/spme/double_layer_linear.h"
+
+namespace rbcflow {
+
+CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
+                       const LayerDomain& domain, const QuadratureOptions& options)
+    : grids_(std::move(grids)), domain_(domain) {
+  if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
+  const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
+  cells_.resize(nc);
+#pragma omp parallel for schedule(dynamic)
+  for (int c = 0; c < nc; ++c) cells_[c] = std::make_shared<const CellQuadratureGeometry>(cells[c], grids_, options);
+  nodes_.x.resize(nc * np, 3);
+  nodes_.normal.resize(nc * np, 3);
+  nodes_.weight.resize(nc * np);
+  for (int c = 0; c < nc; ++c) {
+    nodes_.x.middleRows(c * np, np) = cells_[c]->nodes().x;
+    nodes_.normal.middleRows(c * np, np) = cells_[c]->nodes().normal;
+    nodes_.weight.segment(c * np, np) = cells_[c]->nodes().weight;
+  }
+  double xi_single = 0.0, xi_double = 0.0;
+  if (domain_.box) {
+    const PeriodicBox& box = *domain_.box;
+    const EwaldChoice cs = choose_ewald_parameters(EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np);
+    const EwaldChoice cd = choose_ewald_parameters(EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np);
+    single_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cs.parameters, FftPlanning::estimate), nodes_.x);
+    double_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cd.parameters, FftPlanning::estimate), nodes_.x);
+    xi_single = cs.parameters.xi;
+    xi_double = cd.parameters.xi;
+  }
+  self_single_.resize(nc);
+  self_double_.resize(nc);
+  near_.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    const auto targets = cells_[c]->node_targets();
+    self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
+    self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
+    // Nodes of other cells closer than the near distance (nearest periodic image).
+    std::vector<QuadratureTarget> near_targets;
+    const CellQuadratureGeometry& src = *cells_[c];
+    const Eigen::Vector3d lo = src.nodes().x.colwise().minCoeff(), hi = src.nodes().x.colwise().maxCoeff();
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    const SphGrid& grid = grids_->n_grid->grid();
+    for (int d = 0; d < nc; ++d) {
+      if (d == c) continue;
+      for (int p = 0; p < np; ++p) {
+        Eigen::Vector3d x0 = cells_[d]->nodes().x.row(p);
+        if (domain_.box) {
+          const Eigen::Vector3d L = domain_.box->lengths();
+          x0 -= (L.array() * ((x0 - centre).array() / L.array()).round()).matrix();
+        }
+        if (((x0 - lo).array() < -src.near_distance()).any() || ((x0 - hi).array() > src.near_distance()).any()) continue;
+        Eigen::Index nearest = 0;
+        (src.nodes().x.rowwise() - x0.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+        const int q = static_cast<int>(nearest);
+        const SurfaceProjection proj =
+            project_onto_surface(src.coeffs(), x0, grid.theta()[q / grid.n_phi()], grid.phi(q % grid.n_phi()));
+        if (proj.distance >= src.near_distance()) continue;
+        QuadratureTarget t;
+        t.x = x0;
+        t.theta = proj.theta;
+        t.phi = proj.phi;
+        t.distance = proj.distance;
+        near_targets.push_back(t);
+        near_[c].rows.push_back(d * np + p);
+      }
+    }
+    if (!near_targets.empty()) {
+      near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, near_targets);
+      near_[c].double_ = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, near_targets);
+    }
+  }
+}
+
+CellLayers::~CellLayers() = default;
+
+int CellLayers::near_targets() const {
+  int n = 0;
+  for (const auto& nc : near_) n += static_cast<int>(nc.rows.size());
+  return n;
+}
+
+Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& stacked, int c) const {
+  return stacked.middleRows(c * nodes_per_cell(), nodes_per_cell());
+}
+
+Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd& density) const {
+  const int np = nodes_per_cell();
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(density.rows(), 3);
+  for (int c = 0; c < num_cells(); ++c) {
+    const Eigen::MatrixXd block = cell_block(density, c);
+    const auto& self = layer == Layer::single ? self_single_[c] : self_double_[c];
+    out.middleRows(c * np, np) += self->apply(block);
+    const NearCorrection& n = near_[c];
+    if (n.rows.empty()) continue;
+    const Eigen::MatrixXd v = (layer == Layer::single ? n.single : n.double_)->apply(block);
+    for (std::size_t k = 0; k < n.rows.size(); ++k) out.row(n.rows[k]) += v.row(k);
+  }
+  return out;
+}
+
+Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
+  if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
+  Eigen::MatrixXd regular;
+  if (single_plan_) {
+    const PointField weighted = f.array().colwise() * nodes_.weight.array();
+    regular = single_plan_->single_layer(weighted);
+  } else {
+    std::vector<int> self(nodes_.size());
+    for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
+    regular = regular_layer_sum(nodes_, f, LayerKernel{Layer::single, 0.0}, nodes_.x, self);
+  }
+  return regular + apply_corrections(Layer::single, f);
+}
+
+Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
+  if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
+  Eigen::MatrixXd regular;
+  if (double_plan_) {
+    const PointField q = u.array().colwise() * nodes_.weight.array();
+    regular = double_plan_->double_layer(q, nodes_.normal) +
+              double_layer_linear_part(*domain_.box, nodes_.x, q, nodes_.normal, nodes_.x);
+  } else {
+    std::vector<int> self(nodes_.size());
+    for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
+    regular = regular_layer_sum(nodes_, u, LayerKernel{Layer::double_, 0.0}, nodes_.x, self);
+  }
+  return regular + apply_corrections(Layer::double_, u);
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,59 @@
+#pragma once
+// The boundary-integral layers of eq. (4)-(5) over all cells, at the nodes of all cells, as
+// matrix-free products for one fixed geometry (one time step):
+//   single_layer(f)_t = integral_D G(x - x_t) f dS        (= 8 pi mu times a velocity)
+//   double_layer(u)_t = p.v. integral_D T(x - x_t) u n dS  (periodic: with the linear part of (3))
+// Free space: direct regular sums; periodic: SPME + real-space sums (EwaldPlan). In both, the
+// singular self-interaction of each cell and the nearly-singular interaction of close cells
+// come from the quadrature corrections (libsolver/quadrature), built once in the constructor.
+// Node data are stacked cell by cell: row c * nodes_per_cell + p.
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "geometry/cell_grids.h"
+#include "libsolver/quadrature/singular_quadrature.h"
+#include "libsolver/spme/ewald_plan.h"
+#include "libsolver/spme/periodic_box.h"
+
+namespace rbcflow {
+
+struct LayerDomain {
+  std::optional<PeriodicBox> box;  // empty: free space
+  double ewald_tolerance = 1e-6;
+};
+
+class CellLayers {
+ public:
+  CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
+             const LayerDomain& domain, const QuadratureOptions& options = {});
+  ~CellLayers();
+
+  int num_cells() const { return static_cast<int>(cells_.size()); }
+  int nodes_per_cell() const { return grids_->n_grid->grid().size(); }
+  const SourceNodes& nodes() const { return nodes_; }  // stacked
+  const CellQuadratureGeometry& cell(int c) const { return *cells_[c]; }
+  int near_targets() const;  // nearly-singular (target, source cell) pairs
+
+  Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
+  Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
+
+ private:
+  struct NearCorrection {
+    std::unique_ptr<LayerCorrection> single, double_;
+    std::vector<int> rows;  // stacked target rows
+  };
+  Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density) const;
+  Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
+
+  std::shared_ptr<const CellGrids> grids_;
+  LayerDomain domain_;
+  std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;
+  SourceNodes nodes_;
+  std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
+  std::vector<NearCorrection> near_;  // per source cell
+  std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
+};
+
+}  // namespace rbcflow

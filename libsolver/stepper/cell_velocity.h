@@ -1,0 +1,24 @@
+#pragma once
+// The cell-surface velocity of eq. (6) (step (i), eq. 10, without walls):
+//   u - (1 - lambda)/(4 pi (1 + lambda)) K u = -1/(4 pi mu (1 + lambda)) N f + 2/(1 + lambda) u_b
+// with f the hydrodynamic traction (membrane traction of eq. 23 minus any body-force density)
+// and u_b the background: the mean velocity <u> in a periodic box, the imposed flow in free
+// space. lambda = 1 needs no solve; otherwise GMRES (well conditioned for any lambda).
+#include <Eigen/Core>
+
+#include "libsolver/operators/cell_layers.h"
+#include "libsolver/stepper/gmres.h"
+
+namespace rbcflow {
+
+struct VelocitySolve {
+  Eigen::MatrixXd velocity;  // stacked nodes x 3
+  GmresResult gmres;         // iterations 0 for lambda = 1
+};
+
+// mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3.
+VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& traction, double viscosity_ratio,
+                                  const Eigen::MatrixXd& background, double tolerance, int max_iterations,
+                                  const Eigen::MatrixXd& initial_guess = {});
+
+}  // namespace rbcflow
