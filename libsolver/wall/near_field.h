@@ -1,0 +1,32 @@
+#pragma once
+// Accurate single-layer integrals over the wall triangles near each target (paper section 4):
+// a triangle is near when its centroid is within near_factor times its diameter of the target
+// (minimum image under the wall's periods). A triangle containing the target (a node, or a
+// point on the wall) is split at the target and integrated by Duffy's rule; the other near
+// triangles by adaptive subdivision into Gauss-7 pieces. The kernel is the free-space G: the
+// periodic remainder G^per - G is smooth and left to the Gauss-7 far-field sum.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <utility>
+#include <vector>
+
+#include "wall_elements.h"
+
+namespace rbcflow {
+
+struct NearField {
+  // Both 3 n_targets x 3 n_nodes (index 3 i + k), acting on nodal densities:
+  Eigen::SparseMatrix<double> accurate;    // sum over near triangles of int lambda_a G dS
+  Eigen::SparseMatrix<double> correction;  // accurate minus the same triangles' Gauss-7 sum
+  // (target, Gauss point) pairs at the same position to 1e-12 of the element size (a target
+  // at a centroid), left out of the Gauss-7 sum here as in the far-field sum (wall_operator.h).
+  std::vector<std::pair<int, int>> coincident;
+};
+
+NearField near_field(const WallElements& elements, const Eigen::Matrix<double, Eigen::Dynamic, 3>& targets,
+                     double near_factor = 3.0);
+
+// [M_0 M_1 M_2], M_a = int_T lambda_a(y) G(y - x) dS(y), for triangle vertices v (columns).
+Eigen::Matrix<double, 3, 9> element_single_layer(const Eigen::Matrix3d& v, const Eigen::Vector3d& x);
+
+}  // namespace rbcflow

@@ -1,0 +1,59 @@
+#include "wall_operator.h"
+
+#include "libsolver/kernels/ewald_kernels.h"
+#include "libsolver/kernels/stokes_kernels.h"
+#include "libsolver/spme/ewald_parameters.h"
+
+namespace rbcflow {
+
+namespace {
+
+PointField wrapped(const PointField& x, const PeriodicBox& box) {
+  PointField out(x.rows(), 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) out.row(i) = box.wrap(x.row(i).transpose()).transpose();
+  return out;
+}
+
+}  // namespace
+
+WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets)
+    : elements_(std::move(elements)), targets_(targets), near_(near_field(*elements_, targets_)) {
+  for (const auto& [t, q] : near_.coincident) targets_.row(t) = elements_->points.row(q);
+}
+
+WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
+                           const PeriodicBox& box, double ewald_tolerance)
+    : WallOperator(std::move(elements), targets) {
+  const long n = elements_->points.rows();
+  const EwaldChoice choice =
+      choose_ewald_parameters(EwaldKernel::stokeslet, ewald_tolerance, box, n, targets.rows());
+  auto grid = std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
+  ewald_.emplace(grid, wrapped(elements_->points, box), wrapped(targets_, box));
+}
+
+PointField WallOperator::apply(const PointField& f) {
+  const PointField density = elements_->weighted_density(f);
+  PointField u;
+  if (ewald_) {
+    u = ewald_->single_layer(density);
+    const double self = ewald_real_stokeslet_self(ewald_->xi());
+    for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+  } else {
+    u = PointField::Zero(targets_.rows(), 3);
+    const PointField& y = elements_->points;
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index t = 0; t < targets_.rows(); ++t) {
+      const Eigen::Vector3d x = targets_.row(t).transpose();
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (Eigen::Index s = 0; s < y.rows(); ++s) {
+        const Eigen::Vector3d r = y.row(s).transpose() - x;
+        if (r.squaredNorm() > 0.0) sum += stokeslet_apply(r, density.row(s).transpose());
+      }
+      u.row(t) = sum.transpose();
+    }
+  }
+  const Eigen::VectorXd correction = near_.correction * to_vector(f);
+  return u + to_field(correction);
+}
+
+}  // namespace rbcflow

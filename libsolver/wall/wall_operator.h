@@ -1,0 +1,42 @@
+#pragma once
+// The wall single layer of eq. (7)/(9), matrix-free: for nodal force densities f on the wall's
+// linear elements,  (N_W f)(x_t) = int_W G(y - x_t) f(y) dS(y)  (= 8 pi mu u)  at fixed targets.
+// Gauss-7 sum over all triangles (direct in free space; EwaldPlan with the periodic G^per in a
+// box) plus the sparse near-field correction (near_field.h), built once: the wall does not move.
+// A target at a Gauss point (a centroid; snapped onto it) skips that point's G(0); in a box it gets the regular
+// part of G^per - G there, the smooth term plus ewald_real_stokeslet_self (ewald_plan.h).
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+
+#include "libsolver/spme/ewald_plan.h"
+#include "libsolver/spme/periodic_box.h"
+#include "near_field.h"
+#include "wall_elements.h"
+
+namespace rbcflow {
+
+class WallOperator {
+ public:
+  // Free space (direct O(targets x Gauss points) sums; for tests and small walls).
+  WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets);
+  // Periodic box; the Ewald parameters are chosen for `ewald_tolerance` (ewald_parameters.h).
+  WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
+               const PeriodicBox& box, double ewald_tolerance);
+
+  // N_W f at the targets, one row each; f one row per wall node.
+  PointField apply(const PointField& f);
+
+  const WallElements& elements() const { return *elements_; }
+  const NearField& near() const { return near_; }
+  const PointField& targets() const { return targets_; }
+  int num_targets() const { return static_cast<int>(targets_.rows()); }
+
+ private:
+  std::shared_ptr<const WallElements> elements_;
+  PointField targets_;
+  NearField near_;
+  std::optional<EwaldPlan> ewald_;
+};
+
+}  // namespace rbcflow

@@ -1,0 +1,38 @@
+#include "wall_solver.h"
+
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace rbcflow {
+
+WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
+  if (op_.num_targets() != op_.elements().num_nodes())
+    throw std::invalid_argument("wall solver: the operator's targets must be the wall nodes");
+  near_lu_.compute(op_.near().accurate);
+  if (near_lu_.info() != Eigen::Success)
+    throw std::runtime_error("wall solver: the near-field preconditioner is singular");
+}
+
+WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options) {
+  const Eigen::VectorXd b = (8.0 * std::numbers::pi * mu) * to_vector(velocity);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  auto A = [&](const Eigen::VectorXd& f) { return to_vector(op_.apply(to_field(f))); };
+  auto M_inv = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(near_lu_.solve(r)); };
+  WallSolution s;
+  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations,
+                                 options.restart);
+  if (!s.gmres.converged)
+    throw std::runtime_error("wall solve did not converge: relative residual " +
+                             std::to_string(s.gmres.relative_residual) + " after " +
+                             std::to_string(s.gmres.iterations) + " GMRES iterations");
+  s.force = to_field(x);
+  return s;
+}
+
+Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const PointField& force,
+                                       double box_volume) {
+  return -elements.total(force) / box_volume;
+}
+
+}  // namespace rbcflow

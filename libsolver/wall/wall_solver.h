@@ -1,0 +1,45 @@
+#pragma once
+// The wall solve (12) without cells: find the wall force density f with
+//   (1/(8 pi mu)) N_W f = v  at every wall node,
+// v the velocity the wall must cancel (<u> minus what the cells induce; <u> alone here), by
+// right-preconditioned GMRES. The preconditioner is a sparse LU of the accurate near-field
+// block (near_field.h), factorised once. Not converging is an error.
+#include <Eigen/Core>
+#include <Eigen/SparseLU>
+
+#include "preconditioned_gmres.h"
+#include "wall_operator.h"
+
+namespace rbcflow {
+
+struct WallSolveOptions {
+  double tolerance = 1e-6;  // relative residual
+  int max_iterations = 300;
+  int restart = 60;
+};
+
+struct WallSolution {
+  PointField force;  // f at the nodes: the force density the fluid exerts on the wall
+  GmresReport gmres;
+};
+
+class WallSolver {
+ public:
+  // `op` must have the wall nodes as its targets.
+  explicit WallSolver(WallOperator op);
+
+  // Throws std::runtime_error when GMRES stops unconverged.
+  WallSolution solve(const PointField& velocity, double mu, const WallSolveOptions& options = {});
+
+  WallOperator& op() { return op_; }
+
+ private:
+  WallOperator op_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> near_lu_;
+};
+
+// Eq. (8): <grad p> = -(1/V) int_W f dS.
+Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const PointField& force,
+                                       double box_volume);
+
+}  // namespace rbcflow
