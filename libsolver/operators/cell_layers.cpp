@@ -8,7 +8,7 @@
 namespace rbcflow {
 
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
-                       const LayerDomain& domain, const QuadratureOptions& options)
+                       const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer)
     : grids_(std::move(grids)), domain_(domain) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
   const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
@@ -27,11 +27,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
     const EwaldChoice cs = choose_ewald_parameters(EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np);
-    const EwaldChoice cd = choose_ewald_parameters(EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np);
     single_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cs.parameters, FftPlanning::estimate), nodes_.x);
-    double_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cd.parameters, FftPlanning::estimate), nodes_.x);
     xi_single = cs.parameters.xi;
-    xi_double = cd.parameters.xi;
+    if (with_double_layer) {
+      const EwaldChoice cd = choose_ewald_parameters(EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np);
+      double_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cd.parameters, FftPlanning::estimate), nodes_.x);
+      xi_double = cd.parameters.xi;
+    }
   }
   self_single_.resize(nc);
   self_double_.resize(nc);
@@ -39,7 +41,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   for (int c = 0; c < nc; ++c) {
     const auto targets = cells_[c]->node_targets();
     self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
-    self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
+    if (with_double_layer) {
+      self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
+    }
     // Nodes of other cells closer than the near distance (nearest periodic image).
     std::vector<QuadratureTarget> near_targets;
     const CellQuadratureGeometry& src = *cells_[c];
@@ -72,7 +76,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     }
     if (!near_targets.empty()) {
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, near_targets);
-      near_[c].double_ = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, near_targets);
+      if (with_double_layer) {
+        near_[c].double_ = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, near_targets);
+      }
     }
   }
 }
@@ -120,6 +126,7 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
   if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
+  if (!self_double_[0]) throw std::logic_error("CellLayers::double_layer: built without the double layer");
   Eigen::MatrixXd regular;
   if (double_plan_) {
     const PointField q = u.array().colwise() * nodes_.weight.array();

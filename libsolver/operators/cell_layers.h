@@ -26,8 +26,9 @@ struct LayerDomain {
 
 class CellLayers {
  public:
+  // with_double_layer = false skips everything the double layer needs (lambda = 1).
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
-             const LayerDomain& domain, const QuadratureOptions& options = {});
+             const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true);
   ~CellLayers();
 
   int num_cells() const { return static_cast<int>(cells_.size()); }
