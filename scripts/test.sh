@@ -25,7 +25,7 @@ fi
 if [ "${RBCFLOW_SKIP_SANITIZERS:-0}" != "1" ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRBCFLOW_SANITIZE=ON \
         -DRBCFLOW_WERROR=ON -DRBCFLOW_BUILD_BENCH=OFF
-  cmake --build build-asan -j "$jobs"
+  cmake --build build-asan -j "$jobs" --target unit_tests
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     run_ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
 fi
