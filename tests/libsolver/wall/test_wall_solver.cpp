@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include "wall_poiseuille.h"
 
@@ -36,5 +38,22 @@ TEST(WallSolver, PoiseuilleInPeriodicTubes) {
     EXPECT_NEAR(r.mu_eff, 1.0, 5e-3);
     EXPECT_NEAR(r.centreline_ratio, 1.0, 5e-3);
     EXPECT_LE(r.max_slip, 1e-3);
+  }
+}
+
+TEST(WallSolver, UnconvergedSolveIsAnError) {
+  TubeSpec spec;
+  spec.diameter = 3.5;
+  spec.box = Eigen::Vector3d(5.0, 5.0, 2.0);
+  spec.element_size = 0.5;
+  auto e = std::make_shared<const WallElements>(tube(spec));
+  WallSolver solver(WallOperator(e, e->wall.surface.points, PeriodicBox(spec.box), 1e-6));
+  WallSolveOptions options;
+  options.max_iterations = 2;
+  try {
+    solver.solve(Eigen::RowVector3d(0, 0, 1).replicate(e->num_nodes(), 1), 1.0, options);
+    FAIL() << "an unconverged solve must throw";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("did not converge"), std::string::npos) << error.what();
   }
 }
