@@ -93,13 +93,28 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
       for (int d = 0; d < 3; ++d) sources_[3 * static_cast<std::size_t>(i) + d] = wrapped[s][d];
     }
   }
+  // Targets sorted by cell as well, so that consecutive targets visit the same sources.
+  std::vector<Eigen::Vector3d> wrapped_targets(nt);
+  std::vector<int> target_cell(nt), target_start(n_cells + 1, 0);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Vector3d& x = wrapped_targets[t] = box.wrap(targets.row(t).transpose());
+    target_cell[t] =
+        (cells.cell_of(x, 0) * cells.n[1] + cells.cell_of(x, 1)) * cells.n[2] + cells.cell_of(x, 2);
+    ++target_start[target_cell[t] + 1];
+  }
+  for (int c = 0; c < n_cells; ++c) target_start[c + 1] += target_start[c];
+  target_order_.resize(nt);
+  rank_.resize(nt);
   targets_.resize(3 * static_cast<std::size_t>(nt));
   for (int t = 0; t < nt; ++t) {
-    const Eigen::Vector3d x = box.wrap(targets.row(t).transpose());
-    for (int d = 0; d < 3; ++d) targets_[3 * static_cast<std::size_t>(t) + d] = x[d];
+    const int i = target_start[target_cell[t]]++;
+    target_order_[i] = t;
+    rank_[t] = i;
+    for (int d = 0; d < 3; ++d)
+      targets_[3 * static_cast<std::size_t>(i) + d] = wrapped_targets[t][d];
   }
 
-  // Visits every (source, image) that can lie within the cutoff of target t.
+  // Visits every (source, image) that can lie within the cutoff of the target sorted at t.
   const double rc2 = cutoff * cutoff, eps2 = coincidence_ * coincidence_;
   const auto visit = [&](int t, auto&& emit) {
     const double* xt = &targets_[3 * static_cast<std::size_t>(t)];

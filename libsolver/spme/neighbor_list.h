@@ -31,12 +31,15 @@ class NeighborList {
 
   // Sources are stored sorted by cell: sorted index i is the caller's source order()[i].
   const std::vector<int>& order() const { return order_; }
+  // Targets likewise; visiting them in target_order() keeps the memory accesses local.
+  const std::vector<int>& target_order() const { return target_order_; }
 
-  // Calls f(sorted source index, r) for every pair of target t, r = x_s + n L - x_t.
+  // Calls f(sorted source index, r) for every pair of the caller's target t, r = x_s + n L - x_t.
   template <class F>
   void for_each_neighbor(int t, F&& f) const {
-    const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
-    for (std::int64_t i = offsets_[t]; i < offsets_[t + 1]; ++i) {
+    const std::size_t k = static_cast<std::size_t>(rank_[t]);
+    const double* xt = &targets_[3 * k];
+    for (std::int64_t i = offsets_[k]; i < offsets_[k + 1]; ++i) {
       const int s = pair_source_[i];
       const double* xs = &sources_[3 * static_cast<std::size_t>(s)];
       const double* shift = &image_shifts_[3 * static_cast<std::size_t>(pair_image_[i])];
@@ -50,9 +53,11 @@ class NeighborList {
   double cutoff_, coincidence_;
   std::vector<int> order_;             // sorted -> caller's source index
   std::vector<double> sources_;        // wrapped source positions, sorted, xyz interleaved
-  std::vector<double> targets_;        // wrapped target positions, xyz interleaved
+  std::vector<int> target_order_;      // sorted -> caller's target index
+  std::vector<int> rank_;              // caller's target index -> sorted
+  std::vector<double> targets_;        // wrapped target positions, sorted, xyz interleaved
   std::vector<double> image_shifts_;   // n L for each image id, xyz interleaved
-  std::vector<std::int64_t> offsets_;  // pairs of target t: [offsets_[t], offsets_[t + 1])
+  std::vector<std::int64_t> offsets_;  // pairs of sorted target k: [offsets_[k], offsets_[k + 1])
   std::vector<std::int32_t> pair_source_;
   std::vector<std::uint16_t> pair_image_;
 };

@@ -39,7 +39,8 @@ PointField real_space_single_layer(const NeighborList& pairs, double xi, const P
   const EwaldRealKernel kernel(xi);
   PointField u(pairs.n_targets(), 3);
 #pragma omp parallel for schedule(dynamic, 64)
-  for (int t = 0; t < pairs.n_targets(); ++t) {
+  for (int k = 0; k < pairs.n_targets(); ++k) {
+    const int t = pairs.target_order()[k];
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
       const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
@@ -58,7 +59,8 @@ PointField real_space_double_layer(const NeighborList& pairs, double xi, const P
   const EwaldRealKernel kernel(xi);
   PointField u(pairs.n_targets(), 3);
 #pragma omp parallel for schedule(dynamic, 64)
-  for (int t = 0; t < pairs.n_targets(); ++t) {
+  for (int k = 0; k < pairs.n_targets(); ++k) {
+    const int t = pairs.target_order()[k];
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     pairs.for_each_neighbor(t, [&](int s, const Eigen::Vector3d& r) {
       const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
