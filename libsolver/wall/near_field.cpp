@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <Eigen/Geometry>
+#include <map>
 #include <vector>
 
 #include "libsolver/kernels/stokes_kernels.h"
@@ -91,18 +92,24 @@ Eigen::Matrix<double, 3, 9> element_single_layer(const Eigen::Matrix3d& v, const
 }
 
 NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::Dynamic, 3>& targets,
-                     double near_factor) {
+                     double near_factor, double preconditioner_factor) {
   using Triplet = Eigen::Triplet<double>;
+  using Blocks = std::map<int, Eigen::Matrix3d>;  // node -> 3 x 3 block of one target's row
   const int nt = static_cast<int>(targets.rows());
   const TriangleRule& gauss = gauss7_rule();
   const int threads = omp_get_max_threads();
-  std::vector<std::vector<Triplet>> accurate(threads), correction(threads);
+  std::vector<std::vector<Triplet>> correction(threads), local(threads);
   std::vector<std::vector<std::pair<int, int>>> coincident(threads);
+  auto emit = [](int i, const Blocks& blocks, std::vector<Triplet>& out) {
+    for (const auto& [node, b] : blocks)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) out.emplace_back(3 * i + k, 3 * node + l, b(k, l));
+  };
 #pragma omp parallel for schedule(dynamic, 16)
   for (int i = 0; i < nt; ++i) {
-    auto& acc = accurate[omp_get_thread_num()];
-    auto& cor = correction[omp_get_thread_num()];
+    const int thread = omp_get_thread_num();
     const Eigen::Vector3d x = targets.row(i).transpose();
+    Blocks cor, loc;
     for (int t = 0; t < e.num_triangles(); ++t) {
       const Eigen::Vector3d c = e.vertices[t].rowwise().mean();
       const Eigen::Vector3d r = minimum_image(c - x, e.wall.period);
@@ -112,16 +119,19 @@ NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::D
       Eigen::Matrix<double, 3, 9> smooth = Eigen::Matrix<double, 3, 9>::Zero();
       int q = -1;
       add_rule(v, Eigen::Matrix3d::Identity(), x, gauss, e.areas[t], smooth, &q);
-      if (q >= 0) coincident[omp_get_thread_num()].emplace_back(i, 7 * t + q);
+      if (q >= 0) coincident[thread].emplace_back(i, 7 * t + q);
+      const bool in_preconditioner = r.norm() < preconditioner_factor * e.diameters[t];
       for (int a = 0; a < 3; ++a) {
         const int node = e.wall.surface.triangles(t, a);
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) {
-            acc.emplace_back(3 * i + k, 3 * node + l, exact(k, 3 * a + l));
-            cor.emplace_back(3 * i + k, 3 * node + l, exact(k, 3 * a + l) - smooth(k, 3 * a + l));
-          }
+        auto [it, fresh] = cor.try_emplace(node, Eigen::Matrix3d::Zero());
+        it->second += exact.block<3, 3>(0, 3 * a) - smooth.block<3, 3>(0, 3 * a);
+        if (!in_preconditioner) continue;
+        auto [jt, fresh_local] = loc.try_emplace(node, Eigen::Matrix3d::Zero());
+        jt->second += exact.block<3, 3>(0, 3 * a);
       }
     }
+    emit(i, cor, correction[thread]);
+    emit(i, loc, local[thread]);
   }
   NearField out;
   auto assemble = [&](std::vector<std::vector<Triplet>>& parts, Eigen::SparseMatrix<double>& m) {
@@ -130,8 +140,8 @@ NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::D
     m.resize(3 * nt, 3 * e.num_nodes());
     m.setFromTriplets(all.begin(), all.end());
   };
-  assemble(accurate, out.accurate);
   assemble(correction, out.correction);
+  assemble(local, out.local);
   for (const auto& c : coincident) out.coincident.insert(out.coincident.end(), c.begin(), c.end());
   return out;
 }

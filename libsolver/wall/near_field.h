@@ -16,15 +16,18 @@ namespace rbcflow {
 
 struct NearField {
   // Both 3 n_targets x 3 n_nodes (index 3 i + k), acting on nodal densities:
-  Eigen::SparseMatrix<double> accurate;    // sum over near triangles of int lambda_a G dS
-  Eigen::SparseMatrix<double> correction;  // accurate minus the same triangles' Gauss-7 sum
+  // the accurate integrals over the near triangles, int lambda_a G dS, minus their Gauss-7 sum;
+  Eigen::SparseMatrix<double> correction;
+  // the accurate integrals alone over the triangles within preconditioner_factor diameters
+  // (the target's own star and a few more): sparse enough for a cheap LU (wall_solver.h).
+  Eigen::SparseMatrix<double> local;
   // (target, Gauss point) pairs at the same position to 1e-12 of the element size (a target
   // at a centroid), left out of the Gauss-7 sum here as in the far-field sum (wall_operator.h).
   std::vector<std::pair<int, int>> coincident;
 };
 
 NearField near_field(const WallElements& elements, const Eigen::Matrix<double, Eigen::Dynamic, 3>& targets,
-                     double near_factor = 3.0);
+                     double near_factor = 3.0, double preconditioner_factor = 1.0);
 
 // [M_0 M_1 M_2], M_a = int_T lambda_a(y) G(y - x) dS(y), for triangle vertices v (columns).
 Eigen::Matrix<double, 3, 9> element_single_layer(const Eigen::Matrix3d& v, const Eigen::Vector3d& x);

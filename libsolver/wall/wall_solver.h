@@ -2,8 +2,8 @@
 // The wall solve (12) without cells: find the wall force density f with
 //   (1/(8 pi mu)) N_W f = v  at every wall node,
 // v the velocity the wall must cancel (<u> minus what the cells induce; <u> alone here), by
-// right-preconditioned GMRES. The preconditioner is a sparse LU of the accurate near-field
-// block (near_field.h), factorised once. Not converging is an error.
+// right-preconditioned GMRES. The preconditioner is a sparse LU of the local near-field
+// block (NearField::local), factorised once. Not converging is an error.
 #include <Eigen/Core>
 #include <Eigen/SparseLU>
 
