@@ -21,7 +21,7 @@ std::string vec(const Vec3& x) {
 const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 
 void print_domain(const Case& c) {
-  const Domain& d = c.domain;
+  const CaseDomain& d = c.domain;
   if (d.kind == DomainKind::periodic) {
     std::printf("domain:  periodic box %g x %g x %g (volume %.4g)\n", d.box[0], d.box[1], d.box[2],
                 d.box[0] * d.box[1] * d.box[2]);
@@ -43,7 +43,7 @@ void print_vessel(const Case& c, const MemoryEstimate& memory) {
     std::printf("vessel:  none\n");
     return;
   }
-  const Vessel& v = *c.vessel;
+  const CaseVessel& v = *c.vessel;
   std::printf("vessel:  %s along %s", to_string(v.kind).c_str(), axis_name(v.axis));
   if (v.kind == VesselKind::file) {
     std::printf(", %s (scale %g)", v.path.string().c_str(), v.scale);
@@ -68,7 +68,7 @@ void print_cells(const Case& c, std::optional<int> count) {
     std::printf("cells:   none\n");
     return;
   }
-  const Cells& k = *c.cells;
+  const CaseCells& k = *c.cells;
   std::printf("cells:   ");
   if (count) {
     std::printf("%d %s", *count, to_string(k.shape).c_str());
@@ -85,7 +85,7 @@ void print_cells(const Case& c, std::optional<int> count) {
   std::printf("         grid N = %d: %d x %d points, %d modes; de-aliasing M = %d: %d x %d points\n", n, n, 2 * n,
               n * n, m, m, 2 * m);
   std::printf("         membrane %s: Es %g, ", to_string(k.membrane.law).c_str(), k.membrane.shear_modulus);
-  if (k.membrane.law != MembraneLaw::neo_hookean) std::printf("Ed %g, ", k.membrane.dilatation_modulus);
+  if (k.membrane.law != MembraneLawKind::neo_hookean) std::printf("Ed %g, ", k.membrane.dilatation_modulus);
   std::printf("Eb %g\n", k.membrane.bending_modulus);
   const ReferenceCell ref = reference_cell(k);
   std::printf("         reference cell: area %.4g, volume %.4g\n", ref.area, ref.volume);
@@ -109,7 +109,7 @@ void print_time(const Case& c) {
 }
 
 void print_output(const Case& c) {
-  const Output& o = c.output;
+  const CaseOutput& o = c.output;
   std::string formats = o.xdmf ? "xdmf" : "";
   if (o.vtk) formats.append(formats.empty() ? "vtk" : ", vtk");
   std::printf("output:  %s: frames every %d steps (%s)", o.dir.string().c_str(), o.every,

@@ -21,8 +21,8 @@ enum class DomainKind { periodic, free };
 enum class FlowKind { none, shear, extensional };
 enum class VesselKind { tube, constriction, bifurcation, file };
 enum class CellShape { rbc, sphere, ellipsoid };
-enum class MembraneLaw { skalak, neo_hookean, hookean };
-enum class TimeScheme { euler, ab2 };
+enum class MembraneLawKind { skalak, neo_hookean, hookean };
+enum class TimeSchemeKind { euler, ab2 };
 enum class RenderView { side, end, iso };
 
 // The imposed linear flow of a free domain: shear u = rate z e_x; extensional (planar)
@@ -33,7 +33,7 @@ struct BackgroundFlow {
   bool operator==(const BackgroundFlow&) const = default;
 };
 
-struct Domain {
+struct CaseDomain {
   DomainKind kind = DomainKind::periodic;
   Vec3 box{};  // periodic only
   // A periodic domain has exactly one of these: <u> of (6), or <grad p> with (6)-(8) solved
@@ -42,10 +42,10 @@ struct Domain {
   std::optional<Vec3> pressure_gradient;
   double viscosity_ratio = 5.0;     // lambda
   BackgroundFlow background_flow;   // free only
-  bool operator==(const Domain&) const = default;
+  bool operator==(const CaseDomain&) const = default;
 };
 
-struct Vessel {
+struct CaseVessel {
   VesselKind kind = VesselKind::tube;
   double diameter = 0;  // tube; constriction away from the neck; bifurcation: the parent
   int axis = 2;         // 0, 1, 2 = x, y, z: the vessel is periodic along this box axis
@@ -60,26 +60,26 @@ struct Vessel {
   // folder); its coordinates are multiplied by `scale`.
   std::filesystem::path path;
   double scale = 1.0;
-  bool operator==(const Vessel&) const = default;
+  bool operator==(const CaseVessel&) const = default;
 };
 
-struct Membrane {
-  MembraneLaw law = MembraneLaw::skalak;
+struct CaseMembrane {
+  MembraneLawKind law = MembraneLawKind::skalak;
   double shear_modulus = 12.4;        // Es, (35)
   double dilatation_modulus = 200.0;  // Ed
   double bending_modulus = 0.0669;    // Eb, (35)
-  bool operator==(const Membrane&) const = default;
+  bool operator==(const CaseMembrane&) const = default;
 };
 
 // A bending eigenmode of degree l added at t = 0 (section 9); m < 0 selects sin(|m| phi).
-struct Perturbation {
+struct CasePerturbation {
   int l = 2;
   int m = 0;
   double amplitude = 1e-4;
-  bool operator==(const Perturbation&) const = default;
+  bool operator==(const CasePerturbation&) const = default;
 };
 
-struct Cells {
+struct CaseCells {
   CellShape shape = CellShape::rbc;
   // Exactly one of count and hematocrit (the tube hematocrit; needs a vessel).
   std::optional<int> count;
@@ -90,40 +90,40 @@ struct Cells {
   std::vector<Vec3> positions;     // empty: placed at random
   std::vector<Vec3> orientations;  // symmetry axes; empty: random
   Vec3 body_force{};               // net external force on each cell
-  std::optional<Perturbation> perturbation;
+  std::optional<CasePerturbation> perturbation;
   Vec3 semi_axes{0.8, 0.9, 1.0};   // ellipsoid only
-  Membrane membrane;
-  bool operator==(const Cells&) const = default;
+  CaseMembrane membrane;
+  bool operator==(const CaseCells&) const = default;
 };
 
 // Ewald summation: the solver chooses alpha, cutoff, grid and spline order from the
 // tolerance; any of them may be set by hand.
-struct Ewald {
+struct CaseEwald {
   double tolerance = 1e-6;
   std::optional<double> alpha;
   std::optional<double> cutoff;
   std::optional<std::array<int, 3>> grid;
   std::optional<int> spline_order;
-  bool operator==(const Ewald&) const = default;
+  bool operator==(const CaseEwald&) const = default;
 };
 
-struct Solver {
+struct CaseSolver {
   double gmres_tolerance = 1e-6;
   int max_iterations = 100;
-  bool operator==(const Solver&) const = default;
+  bool operator==(const CaseSolver&) const = default;
 };
 
-struct Time {
+struct CaseTime {
   double end = 10.0;
   std::optional<double> dt;  // empty: "auto", dt_safety times the limit (37)
   double dt_safety = 0.5;
-  TimeScheme scheme = TimeScheme::euler;
+  TimeSchemeKind scheme = TimeSchemeKind::euler;
   double collision_threshold = 0.02;  // h_s; 0 disables collision removal
   bool volume_constraint = true;
-  bool operator==(const Time&) const = default;
+  bool operator==(const CaseTime&) const = default;
 };
 
-struct Output {
+struct CaseOutput {
   std::filesystem::path dir;  // relative to the working directory; default out/<case name>
   int every = 100;            // steps between ParaView frames
   bool xdmf = true;           // formats = ["xdmf", "vtk"]
@@ -134,7 +134,7 @@ struct Output {
   RenderView render_view = RenderView::iso;
   std::array<int, 2> render_size{1280, 720};
   int checkpoint_every = 1000;  // 0: none
-  bool operator==(const Output&) const = default;
+  bool operator==(const CaseOutput&) const = default;
 };
 
 // Where each key came from, for messages that name the file and line.
@@ -147,13 +147,13 @@ struct CaseSource {
 
 struct Case {
   std::string title;
-  Domain domain;
-  std::optional<Vessel> vessel;
-  std::optional<Cells> cells;
-  Ewald ewald;
-  Solver solver;
-  Time time;
-  Output output;
+  CaseDomain domain;
+  std::optional<CaseVessel> vessel;
+  std::optional<CaseCells> cells;
+  CaseEwald ewald;
+  CaseSolver solver;
+  CaseTime time;
+  CaseOutput output;
   CaseSource source;  // not part of the comparison
 
   bool operator==(const Case& other) const;
@@ -182,8 +182,8 @@ std::string to_string(DomainKind k);
 std::string to_string(FlowKind k);
 std::string to_string(VesselKind k);
 std::string to_string(CellShape s);
-std::string to_string(MembraneLaw l);
-std::string to_string(TimeScheme s);
+std::string to_string(MembraneLawKind l);
+std::string to_string(TimeSchemeKind s);
 std::string to_string(RenderView v);
 
 }  // namespace rbcflow

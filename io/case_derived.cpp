@@ -12,7 +12,7 @@ namespace {
 constexpr double kRbcArea = 16.8;  // section 7: the estimated red-cell area used in (37)
 
 // d(s) of a tube or constriction along its axis.
-double local_diameter(const Vessel& v, double s) {
+double local_diameter(const CaseVessel& v, double s) {
   if (v.kind != VesselKind::constriction) return v.diameter;
   return v.diameter - v.depth * std::exp(-v.width * (s - v.center) * (s - v.center));
 }
@@ -34,7 +34,7 @@ bool has_round_vessel(const Case& c) {
 
 }  // namespace
 
-ReferenceCell reference_cell(const Cells& cells) {
+ReferenceCell reference_cell(const CaseCells& cells) {
   if (cells.shape == CellShape::rbc) return {kRbcArea, 4.0 * std::numbers::pi / 3.0};
   const SHSurface s = cells.shape == CellShape::sphere
                           ? make_sphere(cells.order)
@@ -44,14 +44,14 @@ ReferenceCell reference_cell(const Cells& cells) {
   return {surface_area(g), enclosed_volume(g)};
 }
 
-double effective_spacing(const Cells& cells) {
+double effective_spacing(const CaseCells& cells) {
   return std::sqrt(reference_cell(cells).area) / cells.order;
 }
 
-double time_step_limit(const Cells& cells) {
+double time_step_limit(const CaseCells& cells) {
   const double h = effective_spacing(cells);
-  const Membrane& m = cells.membrane;
-  const double in_plane = m.law == MembraneLaw::neo_hookean ? m.shear_modulus : m.dilatation_modulus;
+  const CaseMembrane& m = cells.membrane;
+  const double in_plane = m.law == MembraneLawKind::neo_hookean ? m.shear_modulus : m.dilatation_modulus;
   double limit = 2.5 * std::pow(h, 1.2) / in_plane;  // (37)
   if (m.bending_modulus > 0) limit = std::min(limit, 0.19 * std::pow(h, 3.2) / m.bending_modulus);
   return limit;
@@ -78,7 +78,7 @@ int flow_axis(const Case& c) {
 
 std::optional<double> vessel_volume(const Case& c) {
   if (!has_round_vessel(c)) return std::nullopt;
-  const Vessel& v = *c.vessel;
+  const CaseVessel& v = *c.vessel;
   return integrate_along(c.domain.box[v.axis], [&](double s) {
     const double d = local_diameter(v, s);
     return std::numbers::pi * d * d / 4.0;
@@ -87,7 +87,7 @@ std::optional<double> vessel_volume(const Case& c) {
 
 std::optional<double> vessel_wall_area(const Case& c) {
   if (!has_round_vessel(c)) return std::nullopt;
-  const Vessel& v = *c.vessel;
+  const CaseVessel& v = *c.vessel;
   return integrate_along(c.domain.box[v.axis], [&](double s) {
     const double e = 1e-6;  // d'(s) by central differences, plenty for an area estimate
     const double slope = (local_diameter(v, s + e) - local_diameter(v, s - e)) / (4.0 * e);

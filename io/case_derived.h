@@ -13,13 +13,13 @@ struct ReferenceCell {
   double area = 0;
   double volume = 0;
 };
-ReferenceCell reference_cell(const Cells& cells);
+ReferenceCell reference_cell(const CaseCells& cells);
 
 // h_eff = sqrt(A) / N and the explicit stability limit (37):
 // dt < min(2.5 h^1.2 / E_D, 0.19 h^3.2 / E_B) (the E_B term is absent for E_B = 0; the
 // neo-Hookean law, which has no E_D, uses E_S in its place).
-double effective_spacing(const Cells& cells);
-double time_step_limit(const Cells& cells);
+double effective_spacing(const CaseCells& cells);
+double time_step_limit(const CaseCells& cells);
 // The step a run takes: time.dt, or dt_safety times (37); with no cells and dt = "auto",
 // time.end (a single step of the quasi-steady wall flow).
 double time_step(const Case& c);

@@ -261,10 +261,10 @@ class Table {
 
 // ---------------------------------------------------------------------------------------------
 
-Domain read_domain(Table& top) {
+CaseDomain read_domain(Table& top) {
   auto t = top.table("domain");
   if (!t) top.fail_table("missing table [domain] (kind = \"periodic\" with a box, or kind = \"free\")");
-  Domain d;
+  CaseDomain d;
   d.kind = t->choice<DomainKind>("kind", DomainKind::periodic,
                                  {{"periodic", DomainKind::periodic}, {"free", DomainKind::free}});
   d.viscosity_ratio = t->real("viscosity_ratio", d.viscosity_ratio, positive());
@@ -300,11 +300,11 @@ Domain read_domain(Table& top) {
   return d;
 }
 
-std::optional<Vessel> read_vessel(Table& top, const Domain& d, const fs::path& base) {
+std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs::path& base) {
   auto t = top.table("vessel");
   if (!t) return std::nullopt;
   if (d.kind != DomainKind::periodic) top.fail("vessel", "a vessel needs [domain] kind = \"periodic\"");
-  Vessel v;
+  CaseVessel v;
   v.kind = t->choice<VesselKind>("kind", VesselKind::tube,
                                  {{"tube", VesselKind::tube},
                                   {"constriction", VesselKind::constriction},
@@ -370,16 +370,16 @@ std::optional<Vessel> read_vessel(Table& top, const Domain& d, const fs::path& b
   return v;
 }
 
-Membrane read_membrane(Table& cells) {
-  Membrane m;
+CaseMembrane read_membrane(Table& cells) {
+  CaseMembrane m;
   auto t = cells.table("membrane");
   if (!t) return m;
-  m.law = t->choice<MembraneLaw>("law", m.law,
-                                 {{"skalak", MembraneLaw::skalak},
-                                  {"neo-hookean", MembraneLaw::neo_hookean},
-                                  {"hookean", MembraneLaw::hookean}});
+  m.law = t->choice<MembraneLawKind>("law", m.law,
+                                 {{"skalak", MembraneLawKind::skalak},
+                                  {"neo-hookean", MembraneLawKind::neo_hookean},
+                                  {"hookean", MembraneLawKind::hookean}});
   m.shear_modulus = t->real("shear_modulus", m.shear_modulus, positive());
-  if (m.law == MembraneLaw::neo_hookean) {
+  if (m.law == MembraneLawKind::neo_hookean) {
     t->reject({"dilatation_modulus"}, "law = \"skalak\" or \"hookean\"");
   }
   m.dilatation_modulus = t->real("dilatation_modulus", m.dilatation_modulus, positive());
@@ -392,10 +392,10 @@ std::string vec3_text(const Vec3& x) {
   return "[" + number_text(x[0]) + ", " + number_text(x[1]) + ", " + number_text(x[2]) + "]";
 }
 
-std::optional<Cells> read_cells(Table& top, const Domain& d, bool has_vessel) {
+std::optional<CaseCells> read_cells(Table& top, const CaseDomain& d, bool has_vessel) {
   auto t = top.table("cells");
   if (!t) return std::nullopt;
-  Cells c;
+  CaseCells c;
   c.shape = t->choice<CellShape>("shape", c.shape,
                                  {{"rbc", CellShape::rbc},
                                   {"sphere", CellShape::sphere},
@@ -457,7 +457,7 @@ std::optional<Cells> read_cells(Table& top, const Domain& d, bool has_vessel) {
   }
   c.body_force = t->vec3("body_force", any_finite()).value_or(c.body_force);
   if (auto p = t->table("perturbation")) {
-    Perturbation q;
+    CasePerturbation q;
     q.l = p->integer("l", q.l, 0, c.order - 1);
     q.m = p->integer("m", q.m, -q.l, q.l);
     q.amplitude = p->real("amplitude", q.amplitude, closed(-0.5, 0.5));
@@ -469,8 +469,8 @@ std::optional<Cells> read_cells(Table& top, const Domain& d, bool has_vessel) {
   return c;
 }
 
-Ewald read_ewald(Table& top, const Domain& d) {
-  Ewald e;
+CaseEwald read_ewald(Table& top, const CaseDomain& d) {
+  CaseEwald e;
   auto t = top.table("ewald");
   if (!t) return e;
   e.tolerance = t->real("tolerance", e.tolerance, closed(1e-15, 0.1));
@@ -483,8 +483,8 @@ Ewald read_ewald(Table& top, const Domain& d) {
   return e;
 }
 
-Solver read_solver(Table& top) {
-  Solver s;
+CaseSolver read_solver(Table& top) {
+  CaseSolver s;
   auto t = top.table("solver");
   if (!t) return s;
   s.gmres_tolerance = t->real("gmres_tolerance", s.gmres_tolerance, open(0, 1));
@@ -493,8 +493,8 @@ Solver read_solver(Table& top) {
   return s;
 }
 
-Time read_time(Table& top) {
-  Time tm;
+CaseTime read_time(Table& top) {
+  CaseTime tm;
   auto t = top.table("time");
   if (!t) return tm;
   tm.end = t->real("end", tm.end, positive());
@@ -506,16 +506,16 @@ Time read_time(Table& top) {
   }
   tm.dt_safety = t->real("dt_safety", tm.dt_safety, open_closed(0, 1));
   if (tm.dt) t->reject({"dt_safety"}, "dt = \"auto\"");
-  tm.scheme = t->choice<TimeScheme>("scheme", tm.scheme,
-                                    {{"euler", TimeScheme::euler}, {"ab2", TimeScheme::ab2}});
+  tm.scheme = t->choice<TimeSchemeKind>("scheme", tm.scheme,
+                                    {{"euler", TimeSchemeKind::euler}, {"ab2", TimeSchemeKind::ab2}});
   tm.collision_threshold = t->real("collision_threshold", tm.collision_threshold, closed(0, 0.5));
   tm.volume_constraint = t->boolean("volume_constraint", tm.volume_constraint);
   t->finish();
   return tm;
 }
 
-Output read_output(Table& top, const fs::path& file) {
-  Output o;
+CaseOutput read_output(Table& top, const fs::path& file) {
+  CaseOutput o;
   o.dir = fs::path("out") / file.stem();
   auto t = top.table("output");
   if (!t) return o;

@@ -73,7 +73,7 @@ class Writer {
 
 const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 
-void write_domain(Writer& w, const Domain& d) {
+void write_domain(Writer& w, const CaseDomain& d) {
   w.table("domain");
   w.text("kind", to_string(d.kind));
   if (d.kind == DomainKind::periodic) {
@@ -89,7 +89,7 @@ void write_domain(Writer& w, const Domain& d) {
   w.key("viscosity_ratio", d.viscosity_ratio);
 }
 
-void write_vessel(Writer& w, const Vessel& v) {
+void write_vessel(Writer& w, const CaseVessel& v) {
   w.table("vessel");
   w.text("kind", to_string(v.kind));
   w.text("axis", axis_name(v.axis));
@@ -111,7 +111,7 @@ void write_vessel(Writer& w, const Vessel& v) {
   }
 }
 
-void write_cells(Writer& w, const Cells& c) {
+void write_cells(Writer& w, const CaseCells& c) {
   w.table("cells");
   w.text("shape", to_string(c.shape));
   if (c.count) w.key("count", *c.count);
@@ -132,13 +132,13 @@ void write_cells(Writer& w, const Cells& c) {
   w.table("cells.membrane");
   w.text("law", to_string(c.membrane.law));
   w.key("shear_modulus", c.membrane.shear_modulus);
-  if (c.membrane.law != MembraneLaw::neo_hookean) {
+  if (c.membrane.law != MembraneLawKind::neo_hookean) {
     w.key("dilatation_modulus", c.membrane.dilatation_modulus);
   }
   w.key("bending_modulus", c.membrane.bending_modulus);
 }
 
-void write_ewald(Writer& w, const Ewald& e) {
+void write_ewald(Writer& w, const CaseEwald& e) {
   w.table("ewald");
   w.key("tolerance", e.tolerance);
   if (e.alpha) w.key("alpha", *e.alpha);
@@ -150,7 +150,7 @@ void write_ewald(Writer& w, const Ewald& e) {
   if (e.spline_order) w.key("spline_order", *e.spline_order);
 }
 
-void write_time(Writer& w, const Time& t) {
+void write_time(Writer& w, const CaseTime& t) {
   w.table("time");
   w.key("end", t.end);
   if (t.dt) {
@@ -164,7 +164,7 @@ void write_time(Writer& w, const Time& t) {
   w.key("volume_constraint", t.volume_constraint);
 }
 
-void write_output(Writer& w, const Output& o) {
+void write_output(Writer& w, const CaseOutput& o) {
   w.table("output");
   w.text("dir", o.dir.string());
   w.key("every", o.every);
@@ -240,7 +240,7 @@ void write_case_toml(const Case& c, const fs::path& file) {
 std::string case_fingerprint(const Case& c) {
   Case physics = c;
   physics.title.clear();
-  physics.output = Output{};
+  physics.output = CaseOutput{};
   physics.time.end = 1.0;
   std::string mesh_bytes;
   if (physics.vessel && physics.vessel->kind == VesselKind::file) {
@@ -273,10 +273,10 @@ std::string to_string(VesselKind k) {
 std::string to_string(CellShape s) {
   return s == CellShape::rbc ? "rbc" : s == CellShape::sphere ? "sphere" : "ellipsoid";
 }
-std::string to_string(MembraneLaw l) {
-  return l == MembraneLaw::skalak ? "skalak" : l == MembraneLaw::neo_hookean ? "neo-hookean" : "hookean";
+std::string to_string(MembraneLawKind l) {
+  return l == MembraneLawKind::skalak ? "skalak" : l == MembraneLawKind::neo_hookean ? "neo-hookean" : "hookean";
 }
-std::string to_string(TimeScheme s) { return s == TimeScheme::euler ? "euler" : "ab2"; }
+std::string to_string(TimeSchemeKind s) { return s == TimeSchemeKind::euler ? "euler" : "ab2"; }
 std::string to_string(RenderView v) {
   return v == RenderView::side ? "side" : v == RenderView::end ? "end" : "iso";
 }

@@ -50,7 +50,7 @@ bool any_point_inside(const TriangleMesh& points_of, const TriangleMesh& surface
 
 }  // namespace
 
-SHSurface reference_shape(const Cells& cells, int order) {
+SHSurface reference_shape(const CaseCells& cells, int order) {
   switch (cells.shape) {
     case CellShape::rbc: return make_biconcave(order);
     case CellShape::sphere: return make_sphere(order);
@@ -59,7 +59,7 @@ SHSurface reference_shape(const Cells& cells, int order) {
   return {};
 }
 
-std::vector<Vec3> cell_orientations(const Cells& cells) {
+std::vector<Vec3> cell_orientations(const CaseCells& cells) {
   std::vector<Vec3> axes;
   if (!cells.orientations.empty()) {
     for (const Vec3& o : cells.orientations) {
@@ -77,7 +77,7 @@ std::vector<Vec3> cell_orientations(const Cells& cells) {
   return axes;
 }
 
-std::vector<SHSurface> placed_cells(const Cells& cells, int order) {
+std::vector<SHSurface> placed_cells(const CaseCells& cells, int order) {
   const SHSurface shape = reference_shape(cells, order);
   const std::vector<Vec3> axes = cell_orientations(cells);
   std::vector<SHSurface> placed;
@@ -94,7 +94,7 @@ std::vector<SHSurface> placed_cells(const Cells& cells, int order) {
 
 void check_cell_layout(const Case& c) {
   if (!c.cells || c.cells->positions.empty()) return;
-  const Cells& cells = *c.cells;
+  const CaseCells& cells = *c.cells;
   const SHTransform t = SHTransform::gauss(kCheckOrder);
   std::vector<TriangleMesh> meshes;
   for (const SHSurface& s : placed_cells(cells, kCheckOrder)) meshes.push_back(s.triangulate(t));
@@ -118,7 +118,7 @@ void check_cell_layout(const Case& c) {
   }
 
   if (c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction)) {
-    const Vessel& v = *c.vessel;
+    const CaseVessel& v = *c.vessel;
     const int a = v.axis, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
     for (int i = 0; i < n; ++i) {
       for (int p = 0; p < meshes[i].num_points(); ++p) {

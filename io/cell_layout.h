@@ -11,14 +11,14 @@
 namespace rbcflow {
 
 // The reference shape of `cells` centred at the origin, order `order`.
-SHSurface reference_shape(const Cells& cells, int order);
+SHSurface reference_shape(const CaseCells& cells, int order);
 
 // The symmetry axis of each listed cell (unit vectors): `orientations`, or uniformly random
 // directions from `seed` (the same on every machine) when none are given.
-std::vector<Vec3> cell_orientations(const Cells& cells);
+std::vector<Vec3> cell_orientations(const CaseCells& cells);
 
 // One surface per entry of `positions`, at order `order`.
-std::vector<SHSurface> placed_cells(const Cells& cells, int order);
+std::vector<SHSurface> placed_cells(const CaseCells& cells, int order);
 
 // Throws CaseError (naming cells.positions and its line) when a listed cell is longer than the
 // periodic box, crosses the wall of a tube or constriction, or overlaps another cell (or a

@@ -33,12 +33,12 @@ namespace fs = std::filesystem;
 namespace {
 
 // The values coloured: the field itself, or the magnitude of each row.
-Eigen::VectorXd colour_values(const PointField& f) {
+Eigen::VectorXd colour_values(const SurfaceField& f) {
   return f.values.cols() == 1 ? Eigen::VectorXd(f.values.col(0)) : Eigen::VectorXd(f.values.rowwise().norm());
 }
 
-const PointField* find_field(const Surface& s, const std::string& name) {
-  for (const PointField& f : s.fields) {
+const SurfaceField* find_field(const Surface& s, const std::string& name) {
+  for (const SurfaceField& f : s.fields) {
     if (f.name == name) return &f;
   }
   return nullptr;
@@ -103,10 +103,10 @@ void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, co
   bool found = false;
   for (const Surface& s : surfaces) {
     if (s.name == "wall") continue;
-    for (const PointField& f : s.fields) {
+    for (const SurfaceField& f : s.fields) {
       if (std::find(available.begin(), available.end(), f.name) == available.end()) available.push_back(f.name);
     }
-    if (const PointField* f = coloured ? find_field(s, o.field) : nullptr) {
+    if (const SurfaceField* f = coloured ? find_field(s, o.field) : nullptr) {
       const Eigen::VectorXd v = colour_values(*f);
       if (v.size() > 0) {
         lo = std::min(lo, v.minCoeff());
@@ -145,7 +145,7 @@ void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, co
       actor->GetProperty()->SetColor(0.6, 0.6, 0.65);
       actor->GetProperty()->SetOpacity(0.25);
     } else {
-      const PointField* f = coloured ? find_field(s, o.field) : nullptr;
+      const SurfaceField* f = coloured ? find_field(s, o.field) : nullptr;
       if (f) {
         const Eigen::VectorXd v = colour_values(*f);
         vtkNew<vtkDoubleArray> scalars;

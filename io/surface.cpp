@@ -20,7 +20,7 @@ bool plain_name(const std::string& name) {
 void validate(const Surface& s) {
   if (!plain_name(s.name)) throw std::invalid_argument("surface name '" + s.name + "' is not [A-Za-z0-9_]+");
   std::set<std::string> names;
-  for (const PointField& f : s.fields) {
+  for (const SurfaceField& f : s.fields) {
     if (!plain_name(f.name)) {
       throw std::invalid_argument("surface " + s.name + ": field name '" + f.name + "' is not [A-Za-z0-9_]+");
     }
@@ -45,7 +45,7 @@ Surface merge_surfaces(const std::string& name, const std::vector<Surface>& part
   m.mesh.triangles.resize(triangles, 3);
   Eigen::MatrixXd ids(points, 1);
   if (!parts.empty()) {
-    for (const PointField& f : parts.front().fields) m.fields.push_back({f.name, Eigen::MatrixXd(points, f.values.cols())});
+    for (const SurfaceField& f : parts.front().fields) m.fields.push_back({f.name, Eigen::MatrixXd(points, f.values.cols())});
   }
   int p0 = 0, t0 = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {

@@ -12,7 +12,7 @@ namespace rbcflow {
 
 // A named field on the points of a mesh: one row per point, 1 (scalar), 3 (vector) or 9
 // (tensor) columns.
-struct PointField {
+struct SurfaceField {
   std::string name;
   Eigen::MatrixXd values;
 };
@@ -20,7 +20,7 @@ struct PointField {
 struct Surface {
   std::string name;
   TriangleMesh mesh;
-  std::vector<PointField> fields;
+  std::vector<SurfaceField> fields;
 };
 
 // Throws std::invalid_argument when a name is empty or not [A-Za-z0-9_], a field name repeats,

@@ -13,7 +13,7 @@ namespace rbcflow {
 
 // Points, triangles and one double array per field; throws std::invalid_argument when a
 // field's rows differ from the points.
-vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<PointField>& fields);
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<SurfaceField>& fields);
 
 // Renders `window` and writes its image to `png` atomically.
 void write_png(vtkRenderWindow* window, const std::filesystem::path& png);

@@ -18,7 +18,7 @@
 
 namespace rbcflow {
 
-vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<PointField>& fields) {
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<SurfaceField>& fields) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(mesh.num_points());
@@ -33,7 +33,7 @@ vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::ve
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(cells);
-  for (const PointField& f : fields) {
+  for (const SurfaceField& f : fields) {
     if (f.values.rows() != mesh.num_points()) {
       throw std::invalid_argument("write_vtp: field '" + f.name + "' has " +
                                   std::to_string(f.values.rows()) + " rows for " +
@@ -52,7 +52,7 @@ vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::ve
 }
 
 void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<PointField>& fields) {
+               const std::vector<SurfaceField>& fields) {
   const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, fields);
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLPolyDataWriter> writer;

@@ -12,7 +12,7 @@ namespace rbcflow {
 
 // Writes `mesh` and its point fields as a binary, compressed .vtp file (atomically).
 void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<PointField>& fields = {});
+               const std::vector<SurfaceField>& fields = {});
 
 // Reads the points and triangles of a .vtp file (non-triangle cells are an error).
 TriangleMesh read_vtp(const std::filesystem::path& path);

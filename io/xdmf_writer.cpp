@@ -101,7 +101,7 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
   }
   for (const Surface& s : surfaces) {
     validate(s);
-    for (const PointField& f : s.fields) {
+    for (const SurfaceField& f : s.fields) {
       if (f.name == "points" || f.name == "triangles") {
         throw std::invalid_argument("XdmfWriter: a field may not be called " + f.name);
       }
@@ -139,7 +139,7 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
         h5::write_matrix(g.get(), "triangles", Eigen::MatrixXi(s.mesh.triangles));
       }
       SurfaceRecord sr{s.name, s.mesh.num_points(), s.mesh.num_triangles(), {}};
-      for (const PointField& f : s.fields) {
+      for (const SurfaceField& f : s.fields) {
         h5::write_matrix(g.get(), f.name, f.values, true);
         sr.fields.push_back({f.name, static_cast<long long>(f.values.cols())});
       }

@@ -22,7 +22,7 @@ namespace {
 
 // The tube of the case's vessel: a triangulated cylinder over one period of the box.
 Surface tube_wall(const Case& c) {
-  const Vessel& v = *c.vessel;
+  const CaseVessel& v = *c.vessel;
   const int a = v.axis, b = (a + 1) % 3, d = (a + 2) % 3;
   const double length = c.domain.box[a];
   const int around = 48, along = std::max(4, static_cast<int>(length / v.element_size));

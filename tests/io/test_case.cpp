@@ -131,7 +131,7 @@ TEST(Case, DefaultsAreFilledIn) {
   EXPECT_FALSE(c.ewald.alpha);
   EXPECT_EQ(c.solver.max_iterations, 100);
   EXPECT_EQ(c.time.end, 10.0);
-  EXPECT_EQ(c.time.scheme, TimeScheme::euler);
+  EXPECT_EQ(c.time.scheme, TimeSchemeKind::euler);
   EXPECT_EQ(c.output.every, 100);
   EXPECT_EQ(c.output.checkpoint_every, 1000);
   const Case cells = parse_case(minimal("[cells]\n"), "x.toml");
@@ -166,7 +166,7 @@ TEST(Case, AlternativesAreRead) {
   EXPECT_EQ(grad.cells->hematocrit, 0.2);
   EXPECT_FALSE(grad.cells->count);
   EXPECT_EQ(grad.time.dt, 1e-3);
-  EXPECT_EQ(grad.time.scheme, TimeScheme::ab2);
+  EXPECT_EQ(grad.time.scheme, TimeSchemeKind::ab2);
   EXPECT_FALSE(grad.output.xdmf);
   EXPECT_TRUE(grad.output.vtk);
 

@@ -20,7 +20,7 @@ Case tube_case(double diameter, double length, const std::string& cells) {
 }  // namespace
 
 TEST(CaseDerived, TimeStepLimitIsEquation37) {
-  Cells rbc;  // N = 16, Ed = 200, Eb = 0.0669, A = 16.8
+  CaseCells rbc;  // N = 16, Ed = 200, Eb = 0.0669, A = 16.8
   // h = sqrt(16.8) / 16 = 0.256174; the dilatation term 2.5 h^1.2 / 200 = 2.43866e-3 limits
   // (bending: 0.19 h^3.2 / 0.0669 = 3.64e-2).
   EXPECT_NEAR(effective_spacing(rbc), 0.256174, 1e-6);
@@ -46,11 +46,11 @@ TEST(CaseDerived, TimeStepIsAutoOrGiven) {
 }
 
 TEST(CaseDerived, ReferenceCellOfOtherShapesIsMeasured) {
-  Cells sphere;
+  CaseCells sphere;
   sphere.shape = CellShape::sphere;
   EXPECT_NEAR(reference_cell(sphere).area, 4 * std::numbers::pi, 1e-10);
   EXPECT_NEAR(reference_cell(sphere).volume, 4 * std::numbers::pi / 3, 1e-10);
-  EXPECT_EQ(reference_cell(Cells{}).area, 16.8);
+  EXPECT_EQ(reference_cell(CaseCells{}).area, 16.8);
 }
 
 TEST(CaseDerived, VesselVolumeAndArea) {

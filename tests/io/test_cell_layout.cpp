@@ -28,7 +28,7 @@ std::string layout_error(const Case& c) {
 }  // namespace
 
 TEST(CellLayout, OrientationsAreGivenOrSeededRandom) {
-  Cells c;
+  CaseCells c;
   c.positions = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
   const auto a = cell_orientations(c), b = cell_orientations(c);
   EXPECT_EQ(a, b);
@@ -40,7 +40,7 @@ TEST(CellLayout, OrientationsAreGivenOrSeededRandom) {
 }
 
 TEST(CellLayout, PlacedCellsKeepVolumeAndSitAtTheirPositions) {
-  Cells c;
+  CaseCells c;
   c.positions = {{1, 2, 3}};
   c.orientations = {{1, 0, 0}};
   const SHSurface s = placed_cells(c, 12)[0];
