@@ -22,6 +22,12 @@ GmshSession::~GmshSession() {
   omp_set_num_threads(threads_);
 }
 
+std::string gmsh_last_error() {
+  std::string error;
+  gmsh::logger::getLastError(error);
+  return error.empty() ? std::string("unknown gmsh error") : error;
+}
+
 TriangleMesh gmsh_triangles() {
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, parametric;

@@ -1,6 +1,8 @@
 #pragma once
 // One gmsh session (initialize ... finalize) that restores the OpenMP thread count gmsh resets,
-// keeps the terminal quiet and turns gmsh errors into exceptions; and the mesh it made. Internal to rbcflow_vessel.
+// keeps the terminal quiet; gmsh_last_error for messages; and the mesh it made. Internal to rbcflow_vessel.
+#include <string>
+
 #include "vessel_mesh.h"
 
 namespace rbcflow {
@@ -15,6 +17,9 @@ class GmshSession {
  private:
   int threads_;
 };
+
+// gmsh's last error message (gmsh throws non-standard exceptions: catch (...) and ask here).
+std::string gmsh_last_error();
 
 // The triangles of the current gmsh model's mesh (all surfaces), with the nodes they use.
 TriangleMesh gmsh_triangles();

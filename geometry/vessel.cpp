@@ -106,11 +106,7 @@ Eigen::Vector2d frame_centre(const TubeSpec& s) {
   return {0.5 * s.box[frame_axis(s.axis, 0)], 0.5 * s.box[frame_axis(s.axis, 1)]};
 }
 
-}  // namespace
-
-VesselMesh tube(const TubeSpec& spec) {
-  validate(spec);
-  GmshSession session;
+VesselMesh build_tube(const TubeSpec& spec) {
   const Eigen::Vector2d c = frame_centre(spec);
   const int circle = gmsh::model::occ::addCircle(c[0], c[1], 0.0, 0.5 * spec.diameter);
   std::vector<std::pair<int, int>> out;
@@ -118,15 +114,7 @@ VesselMesh tube(const TubeSpec& spec) {
   return mesh_periodic_tube(spec);
 }
 
-double ConstrictionSpec::diameter(double z) const {
-  return tube.diameter - depth * std::exp(-width * (z - centre) * (z - centre));
-}
-
-VesselMesh constriction(const ConstrictionSpec& spec) {
-  validate(spec.tube);
-  if (!(spec.depth >= 0 && spec.depth < spec.tube.diameter) || !(spec.width > 0))
-    throw std::invalid_argument("constriction depth must be in [0, D) and width positive");
-  GmshSession session;
+VesselMesh build_constriction(const ConstrictionSpec& spec) {
   const Eigen::Vector2d c = frame_centre(spec.tube);
   const double length = spec.tube.box[spec.tube.axis];
   constexpr int n = 201;
@@ -141,6 +129,38 @@ VesselMesh constriction(const ConstrictionSpec& spec) {
   for (int i = 1; i + 1 < n; ++i) interior.emplace_back(0, points[i]);
   gmsh::model::occ::remove(interior);
   return mesh_periodic_tube(spec.tube);
+}
+
+}  // namespace
+
+VesselMesh tube(const TubeSpec& spec) {
+  validate(spec);
+  GmshSession session;
+  try {
+    return build_tube(spec);
+  } catch (const std::exception&) {
+    throw;
+  } catch (...) {
+    throw std::runtime_error("gmsh could not mesh the tube: " + gmsh_last_error());
+  }
+}
+
+VesselMesh constriction(const ConstrictionSpec& spec) {
+  validate(spec.tube);
+  if (!(spec.depth >= 0 && spec.depth < spec.tube.diameter) || !(spec.width > 0))
+    throw std::invalid_argument("constriction depth must be in [0, D) and width positive");
+  GmshSession session;
+  try {
+    return build_constriction(spec);
+  } catch (const std::exception&) {
+    throw;
+  } catch (...) {
+    throw std::runtime_error("gmsh could not mesh the constriction: " + gmsh_last_error());
+  }
+}
+
+double ConstrictionSpec::diameter(double z) const {
+  return tube.diameter - depth * std::exp(-width * (z - centre) * (z - centre));
 }
 
 }  // namespace rbcflow

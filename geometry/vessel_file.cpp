@@ -11,16 +11,6 @@
 
 namespace rbcflow {
 
-namespace {
-
-std::string gmsh_error() {
-  std::string error;
-  gmsh::logger::getLastError(error);
-  return error.empty() ? std::string("unknown gmsh error") : error;
-}
-
-}  // namespace
-
 VesselMesh read_vessel(const std::string& path, const Eigen::Vector3d& period) {
   if (!std::filesystem::is_regular_file(path))
     throw std::runtime_error("wall mesh file " + path + " does not exist");
@@ -31,7 +21,7 @@ VesselMesh read_vessel(const std::string& path, const Eigen::Vector3d& period) {
     gmsh::option::setNumber("Geometry.Tolerance", 1e-12);
     gmsh::merge(path);
   } catch (...) {
-    throw std::runtime_error("cannot read wall mesh file " + path + ": " + gmsh_error());
+    throw std::runtime_error("cannot read wall mesh file " + path + ": " + gmsh_last_error());
   }
   VesselMesh wall;
   wall.surface = gmsh_triangles();
@@ -66,7 +56,7 @@ void write_vessel(const VesselMesh& wall, const std::string& path) {
   try {
     gmsh::write(path);
   } catch (...) {
-    throw std::runtime_error("cannot write wall mesh file " + path + ": " + gmsh_error());
+    throw std::runtime_error("cannot write wall mesh file " + path + ": " + gmsh_last_error());
   }
   if (!std::filesystem::is_regular_file(path))
     throw std::runtime_error("cannot write wall mesh file " + path);
