@@ -1,6 +1,7 @@
 // rbcflow check: validate a case file and print what a user needs before a long run.
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 #include "cli.h"
@@ -8,6 +9,7 @@
 #include "io/case_derived.h"
 #include "io/cell_layout.h"
 #include "io/output_dir.h"
+#include "libsolver/spme/ewald_parameters.h"
 
 namespace rbcflow::cli {
 namespace {
@@ -130,6 +132,55 @@ void print_output(const Case& c) {
   }
 }
 
+// One choice of the solver's Ewald chooser, indented under its heading; returns its grid's
+// bytes in the memory model.
+double print_choice(const std::string& what, EwaldKernel kernel, double tolerance, const PeriodicBox& box,
+                    long nodes) {
+  std::printf("         %s (%ld nodes):\n", what.c_str(), nodes);
+  const EwaldChoice choice = choose_ewald_parameters(kernel, tolerance, box, nodes);
+  std::istringstream lines(to_string(choice));
+  std::string line;
+  std::getline(lines, line);  // the heading repeats the kernel and tolerance
+  while (std::getline(lines, line)) std::printf("         %s\n", line.c_str());
+  return ewald_grid_bytes(choice.parameters.grid);
+}
+
+// The parameters libsolver's chooser picks, for each Ewald sum of the run; their grids are
+// added to the memory estimate (unless the grid is given).
+void print_ewald(const Case& c, std::optional<int> count, MemoryEstimate& memory) try {
+  double grids = 0;
+  const CaseEwald& e = c.ewald;
+  std::printf("ewald:   tolerance %g", e.tolerance);
+  const PeriodicBox box(Eigen::Vector3d(c.domain.box[0], c.domain.box[1], c.domain.box[2]));
+  if (c.cells && count && *count > 0) {
+    const long nodes = 2L * c.cells->order * c.cells->order * *count;
+    std::printf("\n");
+    grids += print_choice("cells, single layer", EwaldKernel::stokeslet, e.tolerance, box, nodes);
+    if (c.domain.viscosity_ratio != 1.0) {
+      grids += print_choice("cells, double layer", EwaldKernel::stresslet, e.tolerance, box, nodes);
+    }
+  } else if (c.cells) {
+    std::printf(" (the cells' sums are chosen once the vessel is meshed and the count is known)\n");
+  } else {
+    std::printf("\n");
+  }
+  if (memory.wall_nodes) {
+    grids += print_choice("wall, single layer", EwaldKernel::stokeslet, e.tolerance, box, *memory.wall_nodes);
+  }
+  if (!e.grid) memory.ewald = grids;
+  if (e.alpha || e.cutoff || e.grid || e.spline_order) {
+    std::printf("         expert overrides used instead:");
+    if (e.alpha) std::printf(" alpha %g", *e.alpha);
+    if (e.cutoff) std::printf(" cutoff %g", *e.cutoff);
+    if (e.grid) std::printf(" grid %d x %d x %d", (*e.grid)[0], (*e.grid)[1], (*e.grid)[2]);
+    if (e.spline_order) std::printf(" spline order %d", *e.spline_order);
+    std::printf("\n");
+  }
+} catch (const std::invalid_argument& e) {
+  // The chooser's limits on grid points and real-space pairs: a tolerance too tight for the size.
+  throw case_error(c, "ewald.tolerance", e.what());
+}
+
 }  // namespace
 
 int run_check(Args& args) {
@@ -138,7 +189,8 @@ int run_check(Args& args) {
         "usage: rbcflow check CASE.toml\n"
         "  Validates the case file (exit status 2 with file, line and key on an error) and\n"
         "  prints the derived parameters: cell count and hematocrit, grid sizes, the time step\n"
-        "  limit (37), the output, and a rough memory estimate.\n");
+        "  limit (37), the Ewald parameters the solver will choose, the output, and a rough\n"
+        "  memory estimate.\n");
     return 0;
   }
   const std::string file = args.positional("case file (CASE.toml)");
@@ -148,17 +200,13 @@ int run_check(Args& args) {
   check_output_dir(c, c.output.dir);
 
   const std::optional<int> count = cell_count(c);
-  const MemoryEstimate memory = memory_estimate(c, count.value_or(0));
+  MemoryEstimate memory = memory_estimate(c, count.value_or(0));
   std::printf("case:    %s: \"%s\"\n", file.c_str(), c.title.c_str());
   print_domain(c);
   print_vessel(c, memory);
   print_cells(c, count);
   print_time(c);
-  if (c.domain.kind == DomainKind::periodic) {
-    // The solver's parameter chooser prints alpha, cutoff, grid and spline order here once
-    // libsolver provides it.
-    std::printf("ewald:   tolerance %g (parameters chosen at run time)\n", c.ewald.tolerance);
-  }
+  if (c.domain.kind == DomainKind::periodic) print_ewald(c, count, memory);
   std::printf("solver:  GMRES tolerance %g, at most %d iterations\n", c.solver.gmres_tolerance,
               c.solver.max_iterations);
   print_output(c);
@@ -168,7 +216,7 @@ int run_check(Args& args) {
   } else if (c.vessel) {
     std::printf(", wall not included until meshed");
   }
-  if (c.ewald.grid) std::printf(", Ewald grid %.0f MB", memory.ewald / 1e6);
+  if (memory.ewald > 0) std::printf(", Ewald grids %.0f MB", memory.ewald / 1e6);
   std::printf(")\ncase OK\n");
   return 0;
 }

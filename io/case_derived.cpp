@@ -125,11 +125,12 @@ MemoryEstimate memory_estimate(const Case& c, int cells) {
     m.wall_nodes = static_cast<int>(std::lround(triangles / 2));
     m.wall = kDouble * 200.0 * *m.wall_nodes;
   }
-  if (c.ewald.grid) {
-    const auto& g = *c.ewald.grid;
-    m.ewald = kDouble * 6.0 * g[0] * g[1] * g[2];
-  }
+  if (c.ewald.grid) m.ewald = ewald_grid_bytes(*c.ewald.grid);
   return m;
+}
+
+double ewald_grid_bytes(const std::array<int, 3>& grid) {
+  return sizeof(double) * 6.0 * grid[0] * grid[1] * grid[2];
 }
 
 }  // namespace rbcflow

@@ -43,7 +43,7 @@ std::optional<double> tube_hematocrit(const Case& c, int cells);
 // A rough memory model (bytes), documented in docs/case-format.md: per cell 48 doubles on
 // each point of the N x 2N and M x 2M grids plus near-singular patches of (N/2)^2 points
 // per grid point; the wall 200 doubles per node; the Ewald grid (when given) 6 arrays of
-// grid size.
+// grid size. `rbcflow check` adds the grids the solver chooses.
 struct MemoryEstimate {
   double cells = 0;
   double wall = 0;
@@ -52,5 +52,7 @@ struct MemoryEstimate {
   double total() const { return cells + wall + ewald; }
 };
 MemoryEstimate memory_estimate(const Case& c, int cells);
+// The memory model's bytes for one SPME grid (6 arrays of doubles).
+double ewald_grid_bytes(const std::array<int, 3>& grid);
 
 }  // namespace rbcflow

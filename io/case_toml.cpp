@@ -469,16 +469,23 @@ std::optional<CaseCells> read_cells(Table& top, const CaseDomain& d, bool has_ve
   return c;
 }
 
+// Ranges as libsolver's Ewald sums accept them (spme/ewald_parameters.h, spme/bspline.h).
 CaseEwald read_ewald(Table& top, const CaseDomain& d) {
   CaseEwald e;
   auto t = top.table("ewald");
   if (!t) return e;
-  e.tolerance = t->real("tolerance", e.tolerance, closed(1e-15, 0.1));
+  e.tolerance = t->real("tolerance", e.tolerance, closed(1e-10, 1e-3));
   e.alpha = t->optional_real("alpha", positive());
-  const double half_box = std::min({d.box[0], d.box[1], d.box[2]}) / 2;
-  e.cutoff = t->optional_real("cutoff", d.kind == DomainKind::periodic ? open_closed(0, half_box) : positive());
-  e.grid = t->int_array<3>("grid", 4, 4096);
-  e.spline_order = t->optional_integer("spline_order", 3, 12);
+  const double longest = std::max({d.box[0], d.box[1], d.box[2]});
+  e.cutoff = t->optional_real("cutoff", d.kind == DomainKind::periodic ? open_closed(0, 16 * longest) : positive());
+  e.spline_order = t->optional_integer("spline_order", 4, 10);
+  const int min_side = 2 * e.spline_order.value_or(4);
+  e.grid = t->int_array<3>("grid", min_side, 4096);
+  if (e.grid) {
+    for (const int side : *e.grid) {
+      if (side % 2 != 0) t->fail("grid", std::to_string(side) + " is odd (grid sides are even)");
+    }
+  }
   t->finish();
   return e;
 }

@@ -305,8 +305,13 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
             "bad.toml:6: time.dt: 2 is out of range (allowed: 0 < x <= 1)");
   EXPECT_EQ(error_of(minimal("[cells.membrane]\nshear_modulus = 0\n")),
             "bad.toml:5: cells.membrane.shear_modulus: 0 is out of range (allowed: 0 < x)");
-  EXPECT_EQ(error_of(minimal("[ewald]\ncutoff = 6\n")),
-            "bad.toml:5: ewald.cutoff: 6 is out of range (allowed: 0 < x <= 5)");
+  EXPECT_EQ(error_of(minimal("[ewald]\ncutoff = 161\n")),
+            "bad.toml:5: ewald.cutoff: 161 is out of range (allowed: 0 < x <= 160)");
+  EXPECT_EQ(error_of(minimal("[ewald]\ntolerance = 1e-12\n")),
+            "bad.toml:5: ewald.tolerance: 1e-12 is out of range (allowed: 1e-10 <= x <= 0.001)");
+  EXPECT_EQ(error_of(minimal("[ewald]\nspline_order = 6\ngrid = [16, 10, 16]\n")),
+            "bad.toml:6: ewald.grid: 10 is out of range (allowed: integers 12..4096)");
+  EXPECT_EQ(error_of(minimal("[ewald]\ngrid = [16, 17, 16]\n")), "bad.toml:5: ewald.grid: 17 is odd (grid sides are even)");
   EXPECT_EQ(error_of(minimal("[output]\nevery = 0\n")),
             "bad.toml:5: output.every: 0 is out of range (allowed: integers 1..2147483647)");
   EXPECT_EQ(error_of(minimal("[cells]\norder = 99999999999999\n")),
