@@ -23,8 +23,10 @@ else
 fi
 
 if [ "${RBCFLOW_SKIP_SANITIZERS:-0}" != "1" ]; then
+  # Warnings are checked (as errors) by the Release build above; sanitizer instrumentation
+  # makes GCC raise false positives of its own, so they are not errors here.
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRBCFLOW_SANITIZE=ON \
-        -DRBCFLOW_WERROR=ON -DRBCFLOW_BUILD_BENCH=OFF
+        -DRBCFLOW_WERROR=OFF -DRBCFLOW_BUILD_BENCH=OFF
   cmake --build build-asan -j "$jobs" --target unit_tests
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     run_ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
