@@ -28,6 +28,10 @@ if [ "${RBCFLOW_SKIP_SANITIZERS:-0}" != "1" ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRBCFLOW_SANITIZE=ON \
         -DRBCFLOW_WERROR=OFF -DRBCFLOW_BUILD_BENCH=OFF
   cmake --build build-asan -j "$jobs" --target unit_tests
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  # Leaks inside third-party libraries (gmsh) are suppressed by tests/lsan.supp.
+  (
+    export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp"
+    export UBSAN_OPTIONS=print_stacktrace=1
     run_ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
+  )
 fi
