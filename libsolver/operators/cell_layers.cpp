@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "geometry/surface_projection.h"
 #include "libsolver/spme/double_layer_linear.h"
+#include "near_targets.h"
 
 namespace rbcflow {
 
@@ -38,6 +38,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   self_single_.resize(nc);
   self_double_.resize(nc);
   near_.resize(nc);
+#pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
     const auto targets = cells_[c]->node_targets();
     self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
@@ -45,35 +46,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
     }
     // Nodes of other cells closer than the near distance (nearest periodic image).
-    std::vector<QuadratureTarget> near_targets;
-    const CellQuadratureGeometry& src = *cells_[c];
-    const Eigen::Vector3d lo = src.nodes().x.colwise().minCoeff(), hi = src.nodes().x.colwise().maxCoeff();
-    const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const SphGrid& grid = grids_->n_grid->grid();
-    for (int d = 0; d < nc; ++d) {
-      if (d == c) continue;
-      for (int p = 0; p < np; ++p) {
-        Eigen::Vector3d x0 = cells_[d]->nodes().x.row(p);
-        if (domain_.box) {
-          const Eigen::Vector3d L = domain_.box->lengths();
-          x0 -= (L.array() * ((x0 - centre).array() / L.array()).round()).matrix();
-        }
-        if (((x0 - lo).array() < -src.near_distance()).any() || ((x0 - hi).array() > src.near_distance()).any()) continue;
-        Eigen::Index nearest = 0;
-        (src.nodes().x.rowwise() - x0.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-        const int q = static_cast<int>(nearest);
-        const SurfaceProjection proj =
-            project_onto_surface(src.coeffs(), x0, grid.theta()[q / grid.n_phi()], grid.phi(q % grid.n_phi()));
-        if (proj.distance >= src.near_distance()) continue;
-        QuadratureTarget t;
-        t.x = x0;
-        t.theta = proj.theta;
-        t.phi = proj.phi;
-        t.distance = proj.distance;
-        near_targets.push_back(t);
-        near_[c].rows.push_back(d * np + p);
-      }
-    }
+    NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
+    near_[c].rows = std::move(near.rows);
+    const std::vector<QuadratureTarget>& near_targets = near.targets;
     if (!near_targets.empty()) {
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, near_targets);
       if (with_double_layer) {
@@ -126,7 +101,7 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
   if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
-  if (!self_double_[0]) throw std::logic_error("CellLayers::double_layer: built without the double layer");
+  if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
   Eigen::MatrixXd regular;
   if (double_plan_) {
     const PointField q = u.array().colwise() * nodes_.weight.array();

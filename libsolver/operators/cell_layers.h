@@ -35,6 +35,9 @@ class CellLayers {
   int nodes_per_cell() const { return grids_->n_grid->grid().size(); }
   const SourceNodes& nodes() const { return nodes_; }  // stacked
   const CellQuadratureGeometry& cell(int c) const { return *cells_[c]; }
+  const std::shared_ptr<const CellQuadratureGeometry>& cell_geometry(int c) const { return cells_[c]; }
+  const LayerDomain& domain() const { return domain_; }
+  bool has_double_layer() const { return self_double_[0] != nullptr; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs
 
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);

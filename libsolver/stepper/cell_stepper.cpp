@@ -1,22 +1,144 @@
 #include "cell_stepper.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
+#include <string>
+
+#include "libsolver/operators/cell_layers_at_points.h"
 
 namespace rbcflow {
 
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kMaxStartSweeps = 20;
+constexpr double kStartSweepTolerance = 1e-5;
+
+std::string at_step(long step) { return " at step " + std::to_string(step); }
+
+}  // namespace
+
 CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrids> grids, CellStepperOptions options)
     : cells_(std::move(cells)), grids_(std::move(grids)), options_(std::move(options)) {
-  if (cells_.empty()) throw std::invalid_argument("CellStepper: no cells");
+  if (cells_.empty() && !options_.wall) throw std::invalid_argument("CellStepper: no cells and no wall");
   if (!(options_.dt > 0)) throw std::invalid_argument("CellStepper: dt must be positive");
+  if (!(options_.viscosity_ratio > 0)) throw std::invalid_argument("CellStepper: the viscosity ratio must be positive");
   if (!options_.domain.box && !options_.background) {
     options_.background = [](const Eigen::Vector3d&) { return Eigen::Vector3d::Zero().eval(); };
   }
+  if (options_.wall) {
+    if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
+    wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
+                                           options_.wall_solve);
+  } else if (options_.pressure_gradient) {
+    throw std::invalid_argument("CellStepper: a prescribed pressure gradient needs a vessel wall to resist it");
+  }
   for (const Cell& c : cells_) {
     const SurfaceGeometry g = c.shape.geometry(*grids_->n_grid);
-    volume0_.push_back(enclosed_volume(g));
-    area0_.push_back(surface_area(g));
+    state_.volume0.push_back(enclosed_volume(g));
+    state_.area0.push_back(surface_area(g));
+    state_.shapes.push_back(c.shape.coeffs());
   }
+}
+
+FlowSolution CellStepper::solve() const { return solve_with(state_.previous_velocity, state_.previous_wall_force); }
+
+FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, const PointField& previous_force) const {
+  const int nc = static_cast<int>(cells_.size());
+  const int np = grids_->n_grid->grid().size();
+  const double lambda = options_.viscosity_ratio;
+  const long step = state_.steps + 1;
+  FlowSolution s;
+  s.mean_velocity = options_.mean_velocity;
+
+  // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
+  std::unique_ptr<CellLayers> layers;
+  if (nc > 0) {
+    std::vector<SHCoeffs> shapes(nc);
+    s.membrane.resize(nc);
+    s.traction.resize(nc * np, 3);
+#pragma omp parallel for schedule(dynamic)
+    for (int c = 0; c < nc; ++c) {
+      shapes[c] = cells_[c].shape.coeffs();
+      s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
+      s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
+    }
+    layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0);
+    for (int c = 0; c < nc; ++c) {
+      if (cells_[c].body_force.isZero()) continue;
+      const double area = layers->cell(c).nodes().weight.sum();
+      s.traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
+    }
+  }
+
+  // (12): the wall force for the cells' traction and the velocity U (previous step's).
+  std::unique_ptr<CellLayersAtPoints> at_wall;
+  if (wall_ && nc > 0) {
+    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes());
+    s.near_wall_points = at_wall->near_points();
+  }
+  auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
+    PointField v = PointField::Zero(wall_->nodes().rows(), 3);
+    if (at_wall) {
+      v -= at_wall->single_layer(s.traction) / (8 * kPi);
+      if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer(U);
+    }
+    WallSolution w;
+    if (options_.pressure_gradient) {
+      w = wall_->solve(v, {});
+      s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient, w.force);
+      w.force += wall_->force_for_mean_velocity(s.mean_velocity);
+    } else {
+      w = wall_->solve(v.rowwise() + s.mean_velocity.transpose(), guess);
+    }
+    s.wall_force = w.force;
+    s.gmres_wall += w.gmres.iterations;
+    s.wall_residual = w.gmres.relative_residual;
+    s.pressure_gradient = wall_->pressure_gradient(w.force);
+  };
+  // (10): the cell velocity for the wall force just found.
+  auto solve_cells = [&](const Eigen::MatrixXd& guess) {
+    Eigen::MatrixXd background(nc * np, 3);
+    if (options_.domain.box) {
+      background.rowwise() = s.mean_velocity.transpose();
+      if (wall_) background += wall_->velocity_at(layers->nodes().x, s.wall_force);
+    } else {
+      for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
+    }
+    const VelocitySolve v = solve_cell_velocity(*layers, s.traction, lambda, background, options_.gmres_tolerance,
+                                                options_.gmres_max_iterations, guess);
+    if (!v.gmres.converged) {
+      throw std::runtime_error("GMRES for the cell velocity did not converge" + at_step(step) + ": relative residual " +
+                               std::to_string(v.gmres.relative_residual) + " after " +
+                               std::to_string(v.gmres.iterations) + " iterations");
+    }
+    s.velocity = v.velocity;
+    s.gmres_cells += v.gmres.iterations;
+    s.cell_residual = v.gmres.relative_residual;
+  };
+
+  try {
+    if (wall_) solve_wall(previous_velocity, previous_force);
+    if (nc > 0) solve_cells(previous_velocity);
+    // The first step has no U^{n-1} for the double layer in (12): sweep (12) and (10) until U
+    // settles (to kStartSweepTolerance: later steps lag U by one step, an O(dt) error, anyway),
+    // so that the run starts close to the solution of the coupled system (9).
+    if (wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np) {
+      for (int sweep = 0; sweep < kMaxStartSweeps; ++sweep) {
+        const Eigen::MatrixXd U = s.velocity;
+        solve_wall(U, s.wall_force);
+        solve_cells(U);
+        if ((s.velocity - U).norm() <= std::max(kStartSweepTolerance, 10 * options_.gmres_tolerance) * U.norm()) break;
+      }
+    }
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    if (what.find(" at step ") != std::string::npos) throw;
+    throw std::runtime_error(what + at_step(step));
+  }
+  return s;
 }
 
 void CellStepper::enforce_volume(int c) {
@@ -24,73 +146,71 @@ void CellStepper::enforce_volume(int c) {
   // correction is first order), the variational volume constraint of section 10.2.
   for (int it = 0; it < 2; ++it) {
     const SurfaceGeometry g = cells_[c].shape.geometry(*grids_->n_grid);
-    const double delta = (volume0_[c] - enclosed_volume(g)) / surface_area(g);
+    const double delta = (state_.volume0[c] - enclosed_volume(g)) / surface_area(g);
     const Eigen::MatrixXd shift = delta * g.normal;
     cells_[c].shape.coeffs().values() += grids_->n_grid->analyze(shift).values();
   }
 }
 
-StepReport CellStepper::step() {
+StepReport CellStepper::advance(const FlowSolution& s) {
   const int nc = static_cast<int>(cells_.size());
   const int np = grids_->n_grid->grid().size();
   const SHTransform& tn = *grids_->n_grid;
-
-  // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
-  std::vector<SHCoeffs> shapes(nc);
-  Eigen::MatrixXd traction(nc * np, 3);
-#pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
-    shapes[c] = cells_[c].shape.coeffs();
-    const MembraneState m = cells_[c].membrane->compute(shapes[c]);
-    traction.middleRows(c * np, np) = m.traction_grid;
-  }
-  CellLayers layers(shapes, grids_, options_.domain, options_.quadrature, options_.viscosity_ratio != 1.0);
-  for (int c = 0; c < nc; ++c) {
-    if (cells_[c].body_force.isZero()) continue;
-    const double area = layers.cell(c).nodes().weight.sum();
-    traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
-  }
-  Eigen::MatrixXd background(nc * np, 3);
-  for (int r = 0; r < nc * np; ++r) {
-    background.row(r) = options_.domain.box ? options_.mean_velocity
-                                            : options_.background(Eigen::Vector3d(layers.nodes().x.row(r)));
-  }
-  const VelocitySolve v = solve_cell_velocity(layers, traction, options_.viscosity_ratio, background,
-                                              options_.gmres_tolerance, options_.gmres_max_iterations, velocity_);
-  if (!v.gmres.converged) {
-    throw std::runtime_error("GMRES for the cell velocity did not converge at step " + std::to_string(steps_ + 1) +
-                             ": relative residual " + std::to_string(v.gmres.relative_residual) + " after " +
-                             std::to_string(v.gmres.iterations) + " iterations");
-  }
-  velocity_ = v.velocity;
-
-  // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with the previous rate.
-  const bool ab2 = options_.scheme == TimeScheme::ab2 && !previous_rate_.empty();
-  std::vector<SHCoeffs> rate(nc);
   StepReport report;
-  report.gmres_iterations = v.gmres.iterations;
-  report.gmres_residual = v.gmres.relative_residual;
+  report.gmres_iterations = s.gmres_cells;
+  report.gmres_residual = s.cell_residual;
+  report.gmres_wall = s.gmres_wall;
+  report.wall_residual = s.wall_residual;
+  report.mean_velocity = s.mean_velocity;
+  report.pressure_gradient = s.pressure_gradient;
+
+  // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
+  const bool ab2 = options_.scheme == TimeScheme::ab2 && state_.previous_velocity.rows() == nc * np;
   for (int c = 0; c < nc; ++c) {
-    rate[c] = tn.analyze(velocity_.middleRows(c * np, np));
+    const SHCoeffs rate = tn.analyze(s.velocity.middleRows(c * np, np));
     Eigen::MatrixXd& x = cells_[c].shape.coeffs().values();
     if (ab2) {
-      x += options_.dt * (1.5 * rate[c].values() - 0.5 * previous_rate_[c].values());
+      const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows(c * np, np));
+      x += options_.dt * (1.5 * rate.values() - 0.5 * previous.values());
     } else {
-      x += options_.dt * rate[c].values();
+      x += options_.dt * rate.values();
     }
     if (options_.volume_constraint) enforce_volume(c);
     const SurfaceGeometry g = cells_[c].shape.geometry(tn);
-    const double dv = std::abs(enclosed_volume(g) / volume0_[c] - 1.0), da = std::abs(surface_area(g) / area0_[c] - 1.0);
-    if (!std::isfinite(dv) || !std::isfinite(da)) {
-      throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN) at step " + std::to_string(steps_ + 1));
+    const double dv = std::abs(enclosed_volume(g) / state_.volume0[c] - 1.0);
+    const double da = std::abs(surface_area(g) / state_.area0[c] - 1.0);
+    if (!std::isfinite(dv) || !std::isfinite(da) || !x.allFinite()) {
+      throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
     }
     report.max_volume_error = std::max(report.max_volume_error, dv);
     report.max_area_error = std::max(report.max_area_error, da);
+    state_.shapes[c] = cells_[c].shape.coeffs();
   }
-  previous_rate_ = std::move(rate);
-  time_ += options_.dt;
-  ++steps_;
+  state_.previous_velocity = s.velocity;
+  state_.previous_wall_force = s.wall_force;
+  state_.time += options_.dt;
+  ++state_.steps;
   return report;
+}
+
+StepperState CellStepper::state() const { return state_; }
+
+void CellStepper::restore(const StepperState& s) {
+  const std::size_t nc = cells_.size();
+  const int np = grids_->n_grid->grid().size();
+  if (s.shapes.size() != nc || s.volume0.size() != nc || s.area0.size() != nc)
+    throw std::invalid_argument("restore: the state has " + std::to_string(s.shapes.size()) + " cells, the run " +
+                                std::to_string(nc));
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (s.shapes[c].order() != cells_[c].shape.coeffs().order())
+      throw std::invalid_argument("restore: cell " + std::to_string(c) + " has another spherical-harmonic order");
+  }
+  if (s.previous_velocity.size() && (s.previous_velocity.rows() != static_cast<long>(nc) * np || s.previous_velocity.cols() != 3))
+    throw std::invalid_argument("restore: the previous velocity does not fit the cells");
+  if (s.previous_wall_force.size() && (!wall_ || s.previous_wall_force.rows() != wall_->elements().num_nodes()))
+    throw std::invalid_argument("restore: the wall force does not fit the wall");
+  state_ = s;
+  for (std::size_t c = 0; c < nc; ++c) cells_[c].shape.coeffs() = s.shapes[c];
 }
 
 }  // namespace rbcflow

@@ -1,16 +1,25 @@
 #pragma once
-// Time advancement of cells without walls (steps (i)-(ii) of section 2, eq. 10-11): membrane
-// traction on the de-aliasing grid, the velocity of eq. (6), then X += dt U (forward Euler,
-// eq. 11) or second-order Adams-Bashforth, and optionally the volume constraint of section
-// 10.2 (a normal correction of each cell to its initial volume).
+// Time advancement of cells among vessel walls, the staggered scheme of section 2:
+//   solve():   membrane traction on the de-aliasing grid (eq. 22-23) minus any body-force
+//              density; the wall force F^n from (12) with U^{n-1}; the cell velocity U^n
+//              from (10) with F^n (GMRES; lambda = 1 is explicit);
+//   advance(): X^{n+1} = X^n + dt U^n (forward Euler, eq. 11) or second-order
+//              Adams-Bashforth, then the volume constraint of section 10.2 (a normal
+//              correction of each cell to its initial volume).
+// solve() does not change the state, so output written between the two (or a frame of the
+// final state) leaves a run bit-for-bit the same; step() is solve() then advance().
+// Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8); free space (no walls) by
+// an imposed background flow. Without cells a step is one quasi-steady wall solve.
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "libsolver/membrane/membrane_force.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/stepper/cell_velocity.h"
+#include "libsolver/stepper/wall_coupling.h"
 
 namespace rbcflow {
 
@@ -22,11 +31,14 @@ struct CellStepperOptions {
   double viscosity_ratio = 1.0;
   LayerDomain domain;                     // periodic box (mean velocity below) or free space
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();        // <u> of eq. (6), periodic
+  std::optional<Eigen::Vector3d> pressure_gradient;               // prescribed <grad p> instead
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background;  // free space: u_inf(x)
   double gmres_tolerance = 1e-6;
   int gmres_max_iterations = 100;
   bool volume_constraint = false;
   QuadratureOptions quadrature;
+  std::shared_ptr<const WallElements> wall;  // none: no vessel (periodic box only)
+  WallSolveOptions wall_solve;
 };
 
 struct Cell {
@@ -35,35 +47,73 @@ struct Cell {
   Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // net external force on the cell
 };
 
+// What solve() found for the current state (X^n).
+struct FlowSolution {
+  Eigen::MatrixXd velocity;   // U^n, stacked over cells (nodes x 3)
+  Eigen::MatrixXd traction;   // hydrodynamic traction f^n on the cells, stacked
+  std::vector<MembraneState> membrane;  // per cell
+  PointField wall_force;      // F^n at the wall nodes (empty without a wall)
+  Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();      // <u> used
+  Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();  // (8); zero without a wall
+  int gmres_cells = 0, gmres_wall = 0;
+  double cell_residual = 0.0, wall_residual = 0.0;
+  int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
+};
+
 struct StepReport {
-  int gmres_iterations = 0;
+  int gmres_iterations = 0;   // cells
   double gmres_residual = 0.0;
-  double max_volume_error = 0.0;  // relative to each cell's initial volume
+  int gmres_wall = 0;
+  double wall_residual = 0.0;
+  Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();
+  double max_volume_error = 0.0;  // relative to each cell's initial volume, after the step
   double max_area_error = 0.0;
+};
+
+// Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}
+// (the staggered coupling and AB2 use them; they are also the GMRES initial guesses).
+struct StepperState {
+  double time = 0.0;
+  long steps = 0;
+  std::vector<SHCoeffs> shapes;
+  Eigen::MatrixXd previous_velocity;  // empty before the first step
+  PointField previous_wall_force;     // empty before the first step or without a wall
+  std::vector<double> volume0, area0;
 };
 
 class CellStepper {
  public:
   CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrids> grids, CellStepperOptions options);
 
-  StepReport step();
-  double time() const { return time_; }
-  long steps() const { return steps_; }
+  FlowSolution solve() const;
+  StepReport advance(const FlowSolution& s);
+  StepReport step() { return advance(solve()); }
+
+  double time() const { return state_.time; }
+  long steps() const { return state_.steps; }
+  double dt() const { return options_.dt; }
   const std::vector<Cell>& cells() const { return cells_; }
+  const CellGrids& grids() const { return *grids_; }
+  const WallCoupling* wall() const { return wall_.get(); }
   // Surface velocity of the last step, stacked over cells (nodes x 3).
-  const Eigen::MatrixXd& velocity() const { return velocity_; }
+  const Eigen::MatrixXd& velocity() const { return state_.previous_velocity; }
+  const std::vector<double>& initial_volumes() const { return state_.volume0; }
+  const std::vector<double>& initial_areas() const { return state_.area0; }
+
+  StepperState state() const;
+  // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
+  void restore(const StepperState& s);
 
  private:
   void enforce_volume(int c);
+  FlowSolution solve_with(const Eigen::MatrixXd& previous_velocity, const PointField& previous_force) const;
 
   std::vector<Cell> cells_;
   std::shared_ptr<const CellGrids> grids_;
   CellStepperOptions options_;
-  std::vector<double> volume0_, area0_;
-  std::vector<SHCoeffs> previous_rate_;  // U of the previous step (AB2)
-  Eigen::MatrixXd velocity_;
-  double time_ = 0.0;
-  long steps_ = 0;
+  std::unique_ptr<WallCoupling> wall_;
+  StepperState state_;
 };
 
 }  // namespace rbcflow

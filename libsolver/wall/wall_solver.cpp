@@ -14,9 +14,10 @@ WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
     throw std::runtime_error("wall solver: the near-field preconditioner is singular");
 }
 
-WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options) {
+WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
+                               const PointField& initial_guess) {
   const Eigen::VectorXd b = (8.0 * std::numbers::pi * mu) * to_vector(velocity);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? to_vector(initial_guess) : Eigen::VectorXd::Zero(b.size());
   auto A = [&](const Eigen::VectorXd& f) { return to_vector(op_.apply(to_field(f))); };
   auto M_inv = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(near_lu_.solve(r)); };
   WallSolution s;

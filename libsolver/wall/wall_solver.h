@@ -28,8 +28,10 @@ class WallSolver {
   // `op` must have the wall nodes as its targets.
   explicit WallSolver(WallOperator op);
 
-  // Throws std::runtime_error when GMRES stops unconverged.
-  WallSolution solve(const PointField& velocity, double mu, const WallSolveOptions& options = {});
+  // Throws std::runtime_error when GMRES stops unconverged. `initial_guess` (one row per node,
+  // or empty for zero) is typically the previous step's force.
+  WallSolution solve(const PointField& velocity, double mu, const WallSolveOptions& options = {},
+                     const PointField& initial_guess = {});
 
   WallOperator& op() { return op_; }
 

@@ -1,0 +1,91 @@
+#include "cell_layers_at_points.h"
+
+#include <stdexcept>
+
+#include "libsolver/quadrature/regular_quadrature.h"
+#include "libsolver/spme/double_layer_linear.h"
+#include "near_targets.h"
+
+namespace rbcflow {
+
+CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points)
+    : layers_(layers), points_(points) {
+  const LayerDomain& domain = layers.domain();
+  const int nc = layers.num_cells();
+  const long ns = layers.nodes().size();
+  const bool with_double = layers.has_double_layer();
+  double xi_single = 0.0, xi_double = 0.0;
+  if (domain.box) {
+    const PeriodicBox& box = *domain.box;
+    auto plan = [&](EwaldKernel kernel, double& xi) {
+      const EwaldChoice choice = choose_ewald_parameters(kernel, domain.ewald_tolerance, box, ns, points_.rows());
+      xi = choice.parameters.xi;
+      return std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate),
+                                         layers.nodes().x, points_);
+    };
+    single_plan_ = plan(EwaldKernel::stokeslet, xi_single);
+    if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double);
+  }
+  near_.resize(nc);
+#pragma omp parallel for schedule(dynamic)
+  for (int c = 0; c < nc; ++c) {
+    NearTargets near = find_near_targets(layers.cell(c), points_, domain.box);
+    if (near.targets.empty()) continue;
+    near_[c].rows = std::move(near.rows);
+    near_[c].single = std::make_unique<LayerCorrection>(layers.cell_geometry(c), LayerKernel{Layer::single, xi_single},
+                                                        near.targets);
+    if (with_double) {
+      near_[c].double_ = std::make_unique<LayerCorrection>(layers.cell_geometry(c),
+                                                           LayerKernel{Layer::double_, xi_double}, near.targets);
+    }
+  }
+}
+
+CellLayersAtPoints::~CellLayersAtPoints() = default;
+
+int CellLayersAtPoints::near_points() const {
+  int n = 0;
+  for (const Near& c : near_) n += static_cast<int>(c.rows.size());
+  return n;
+}
+
+Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::MatrixXd& density) const {
+  const int np = layers_.nodes_per_cell();
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(points_.rows(), 3);
+  for (int c = 0; c < layers_.num_cells(); ++c) {
+    const Near& n = near_[c];
+    if (n.rows.empty()) continue;
+    const Eigen::MatrixXd v = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(c * np, np));
+    for (std::size_t k = 0; k < n.rows.size(); ++k) out.row(n.rows[k]) += v.row(k);
+  }
+  return out;
+}
+
+Eigen::MatrixXd CellLayersAtPoints::single_layer(const Eigen::MatrixXd& f) const {
+  const SourceNodes& nodes = layers_.nodes();
+  if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
+  Eigen::MatrixXd regular;
+  if (single_plan_) {
+    regular = single_plan_->single_layer(f.array().colwise() * nodes.weight.array());
+  } else {
+    regular = regular_layer_sum(nodes, f, LayerKernel{Layer::single, 0.0}, points_);
+  }
+  return regular + corrections(Layer::single, f);
+}
+
+Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const {
+  const SourceNodes& nodes = layers_.nodes();
+  if (u.rows() != nodes.size() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
+  if (!layers_.has_double_layer()) throw std::logic_error("CellLayersAtPoints::double_layer: built without the double layer");
+  Eigen::MatrixXd regular;
+  if (double_plan_) {
+    const PointField q = u.array().colwise() * nodes.weight.array();
+    regular = double_plan_->double_layer(q, nodes.normal) +
+              double_layer_linear_part(*layers_.domain().box, nodes.x, q, nodes.normal, points_);
+  } else {
+    regular = regular_layer_sum(nodes, u, LayerKernel{Layer::double_, 0.0}, points_);
+  }
+  return regular + corrections(Layer::double_, u);
+}
+
+}  // namespace rbcflow

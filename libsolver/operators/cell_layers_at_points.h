@@ -1,0 +1,40 @@
+#pragma once
+// The layer integrals of all cells evaluated at points off the cells (the wall nodes in the
+// no-slip condition (7)): the same sums as CellLayers (direct in free space; SPME + real
+// space in a box, with the linear part of (3) for the double layer), and the nearly-singular
+// correction for every point closer to a cell than its near distance. Built once per time
+// step from the step's CellLayers; the products are linear in the densities.
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "cell_layers.h"
+
+namespace rbcflow {
+
+class CellLayersAtPoints {
+ public:
+  CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points);
+  ~CellLayersAtPoints();
+
+  int num_points() const { return static_cast<int>(points_.rows()); }
+  int near_points() const;  // (point, cell) pairs that needed the nearly-singular correction
+
+  // Densities stacked over the cells as in CellLayers; the results have one row per point.
+  Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;
+  Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u) const;
+
+ private:
+  struct Near {
+    std::unique_ptr<LayerCorrection> single, double_;
+    std::vector<int> rows;
+  };
+  Eigen::MatrixXd corrections(Layer layer, const Eigen::MatrixXd& density) const;
+
+  const CellLayers& layers_;
+  Eigen::MatrixXd points_;
+  std::vector<Near> near_;  // per cell
+  std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
+};
+
+}  // namespace rbcflow

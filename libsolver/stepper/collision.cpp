@@ -1,0 +1,206 @@
+#include "libsolver/stepper/collision.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "geometry/aabb_tree.h"
+#include "geometry/surface_projection.h"
+
+namespace rbcflow {
+namespace {
+
+// Points are pushed to h_s (1 + kOvershoot): the smoothed push then ends at or above h_s.
+constexpr double kOvershoot = 0.01;
+// Gauss-Newton iterations of the projection: seeded at a grid node a fraction of the grid
+// spacing away, within h_s of the surface, it converges in a handful.
+constexpr int kProjectionIterations = 10;
+
+// One cell at the current pass: its grid points, a bounding sphere, and (when a neighbour
+// comes close) the AABB tree over its grid triangulation.
+struct CellView {
+  Eigen::MatrixXd points;
+  Eigen::Vector3d centre;
+  double radius = 0;
+  TriangleMesh mesh;
+  std::unique_ptr<TriangleAabbTree> tree;
+};
+
+struct Pass {
+  std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of each cell
+  std::vector<bool> moved;
+  int cell_pairs = 0, wall_contacts = 0;
+  double min_separation = std::numeric_limits<double>::infinity();
+};
+
+// (theta, phi) of vertex v of SHSurface::triangulate on grid g (the two poles come last).
+Eigen::Vector2d vertex_angles(const SphGrid& g, int v) {
+  if (v == g.size()) return {0.0, 0.0};
+  if (v == g.size() + 1) return {std::numbers::pi, 0.0};
+  return {g.theta()[v / g.n_phi()], g.phi(v % g.n_phi())};
+}
+
+// Pushes the points of cell `a` away from cell `b` translated by `offset` (a periodic image):
+// each point within h_s of b moves half of the missing separation along b's outward normal at
+// its projection (section 11.2, the push shared with b). Returns whether any point moved.
+bool push_from_cell(const CellView& a, const CellView& b, const SHCoeffs& b_coeffs, const Eigen::Vector3d& offset,
+                    const SphGrid& grid, double h_s, Eigen::MatrixXd& push, double& min_separation) {
+  bool hit = false;
+  const double target = h_s * (1.0 + kOvershoot);
+  for (int p = 0; p < a.points.rows(); ++p) {
+    const Eigen::Vector3d q = a.points.row(p).transpose() - offset;  // in b's own frame
+    if ((q - b.centre).norm() > b.radius + 2.0 * h_s) continue;
+    const TriangleAabbTree::ClosestPoint c = b.tree->closest_point(q);
+    const auto tri = b.mesh.triangles.row(c.triangle);
+    const Eigen::Vector3d v0 = b.mesh.points.row(tri[0]).transpose();
+    const Eigen::Vector3d n = (b.mesh.points.row(tri[1]).transpose() - v0).cross(b.mesh.points.row(tri[2]).transpose() - v0);
+    const bool inside = (q - c.point).dot(n) < 0;
+    // The triangulation is within its chord sag (< h_s for a resolved cell) of the surface.
+    if (!inside && c.distance > 2.0 * h_s) continue;
+    int seed = tri[0];
+    for (int k = 1; k < 3; ++k)
+      if ((b.mesh.points.row(tri[k]).transpose() - q).norm() < (b.mesh.points.row(seed).transpose() - q).norm()) seed = tri[k];
+    const Eigen::Vector2d angles = vertex_angles(grid, seed);
+    const SurfaceProjection s = project_onto_surface(b_coeffs, q, angles[0], angles[1], kProjectionIterations);
+    min_separation = std::min(min_separation, s.signed_distance);
+    if (s.signed_distance < h_s) {
+      push.row(p) += 0.5 * (target - s.signed_distance) * s.normal.transpose();
+      hit = true;
+    }
+  }
+  return hit;
+}
+
+// Translations of cell b's images that may come within h_s of cell a: the minimum image and its
+// neighbours along the periodic axes (a box side may be shorter than two cells). For a == b
+// the unshifted cell is left out and of the images +o and -o only one is kept.
+std::vector<Eigen::Vector3d> close_images(const CellView& a, const CellView& b, bool same, const Eigen::Vector3d& period,
+                                          double h_s) {
+  const Eigen::Vector3d d = b.centre - a.centre;
+  const Eigen::Vector3d base = minimum_image(d, period) - d;
+  std::vector<Eigen::Vector3d> offsets{base};
+  for (int k = 0; k < 3; ++k) {
+    if (period[k] <= 0) continue;
+    const std::size_t n = offsets.size();
+    for (int s : {-1, 1})
+      for (std::size_t i = 0; i < n; ++i) offsets.push_back(offsets[i] + s * period[k] * Eigen::Vector3d::Unit(k));
+  }
+  std::vector<Eigen::Vector3d> close;
+  for (const Eigen::Vector3d& o : offsets) {
+    if ((d + o).norm() >= a.radius + b.radius + h_s) continue;
+    if (same) {
+      // o = 0 is the cell itself; keep o only when its first nonzero component is positive.
+      int k = 0;
+      while (k < 3 && o[k] == 0) ++k;
+      if (k == 3 || o[k] < 0) continue;
+    }
+    close.push_back(o);
+  }
+  return close;
+}
+
+Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const SHTransform& t,
+            const Eigen::Vector3d& period, const WallDistance* wall, double h_s) {
+  const int n = static_cast<int>(cells.size());
+  Pass pass;
+  pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
+  pass.moved.assign(n, false);
+  auto tree = [&](int i) {
+    if (!views[i].tree) {
+      views[i].mesh = cells[i].triangulate(t);
+      views[i].tree = std::make_unique<TriangleAabbTree>(views[i].mesh);
+    }
+  };
+  for (int a = 0; a < n; ++a) {
+    for (int b = a; b < n; ++b) {
+      for (const Eigen::Vector3d& o : close_images(views[a], views[b], a == b, period, h_s)) {
+        tree(a);
+        tree(b);
+        const bool hit_a = push_from_cell(views[a], views[b], cells[b].coeffs(), o, t.grid(), h_s, pass.push[a],
+                                          pass.min_separation);
+        const bool hit_b = push_from_cell(views[b], views[a], cells[a].coeffs(), -o, t.grid(), h_s, pass.push[b],
+                                          pass.min_separation);
+        if (hit_a || hit_b) ++pass.cell_pairs;
+        pass.moved[a] = pass.moved[a] || hit_a;
+        pass.moved[b] = pass.moved[b] || hit_b;
+      }
+    }
+  }
+  if (!wall) return pass;
+  // The wall does not move: a point within h_s of it takes the whole push, along the wall
+  // normal into the lumen.
+  const double target = h_s * (1.0 + kOvershoot);
+  for (int a = 0; a < n; ++a) {
+    if (wall->closest(views[a].centre).signed_distance >= views[a].radius + 2.0 * h_s) continue;
+    bool hit = false;
+    for (int p = 0; p < views[a].points.rows(); ++p) {
+      const WallDistance::Query w = wall->closest(views[a].points.row(p).transpose());
+      pass.min_separation = std::min(pass.min_separation, w.signed_distance);
+      if (w.signed_distance < h_s) {
+        pass.push[a].row(p) += (target - w.signed_distance) * w.normal.transpose();
+        hit = true;
+      }
+    }
+    if (hit) ++pass.wall_contacts;
+    pass.moved[a] = pass.moved[a] || hit;
+  }
+  return pass;
+}
+
+}  // namespace
+
+CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
+                                  const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
+                                  int max_iterations) {
+  if (!(threshold > 0)) throw std::invalid_argument("remove_collisions: the threshold h_s must be positive");
+  if (!grid_transform.grid().is_gauss())
+    throw std::invalid_argument("remove_collisions: the grid transform needs a Gauss grid");
+  for (const SHSurface& c : cells)
+    if (c.order() > grid_transform.order())
+      throw std::invalid_argument("remove_collisions: a cell's order exceeds that of the grid transform");
+
+  const int n = static_cast<int>(cells.size());
+  CollisionReport report;
+  std::vector<SHCoeffs> before(n);
+  for (int pass_index = 0;; ++pass_index) {
+    std::vector<CellView> views(n);
+    for (int i = 0; i < n; ++i) {
+      views[i].points = grid_transform.synthesize(cells[i].coeffs());
+      views[i].centre = views[i].points.colwise().mean().transpose();
+      views[i].radius = (views[i].points.rowwise() - views[i].centre.transpose()).rowwise().norm().maxCoeff();
+    }
+    const Pass pass = detect(cells, views, grid_transform, period, wall, threshold);
+    if (pass_index == 0) {
+      report.cell_pairs = pass.cell_pairs;
+      report.wall_contacts = pass.wall_contacts;
+      report.max_overlap = std::max(0.0, threshold - pass.min_separation);
+    }
+    report.min_separation = pass.min_separation;
+    const bool any = std::find(pass.moved.begin(), pass.moved.end(), true) != pass.moved.end();
+    if (!any) break;
+    if (pass_index == max_iterations) {
+      report.converged = false;
+      break;
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!pass.moved[i]) continue;
+      if (before[i].order() == 0) before[i] = cells[i].coeffs();
+      cells[i].coeffs().values() += grid_transform.analyze(pass.push[i], cells[i].order()).values();
+    }
+    ++report.passes;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (before[i].order() == 0) continue;
+    SHCoeffs change = cells[i].coeffs();
+    change.values() -= before[i].values();
+    report.max_displacement =
+        std::max(report.max_displacement, grid_transform.synthesize(change).rowwise().norm().maxCoeff());
+  }
+  return report;
+}
+
+}  // namespace rbcflow

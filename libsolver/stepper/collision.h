@@ -1,0 +1,46 @@
+#pragma once
+// Kinematic collision removal of section 11.2: after a position update, every cell surface
+// point x closer than h_s to another cell (or to the vessel wall) is moved along the direction
+// from its projection x_p on that surface until |x - x_p| = h_s; the displacement field on the
+// grid is analysed back onto the cell's spherical harmonics of order N, so the cell stays a
+// smooth order-N surface. Re-analysis smooths a local push, so detection and push are repeated
+// until no point is closer than h_s (or `max_iterations` passes).
+//
+// Choices where the paper is silent (docs/method-notes.md):
+// - a cell-cell push is shared: each of the two surfaces moves half of h_s - d, so the pair
+//   ends h_s apart (moving both the whole way would leave 2 h_s - d); the wall takes none;
+// - the distance is to the spectral surface itself (Gauss-Newton projection seeded by the AABB
+//   tree over the grid triangulation), not to the triangulation, whose chord sag at N = 16 is
+//   of the order of h_s;
+// - points are pushed to h_s (1 + 1%) so that the repeated passes end at or just above h_s;
+// - periodic images of every cell, itself included, are tested.
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/sh_surface.h"
+#include "geometry/sph_transform.h"
+#include "geometry/wall_distance.h"
+
+namespace rbcflow {
+
+struct CollisionReport {
+  int cell_pairs = 0;             // pairs of cells (periodic images included) found closer than h_s
+  int wall_contacts = 0;          // cells found closer than h_s to the wall
+  double max_overlap = 0.0;       // h_s - (smallest separation found), before the removal; 0 if none
+  double max_displacement = 0.0;  // largest displacement of a grid point, all passes together
+  double min_separation = 0.0;    // smallest point-surface separation after the removal (cells
+                                  // and wall; +infinity when nothing came within 2 h_s)
+  int passes = 0;                 // detection passes that moved something
+  bool converged = true;          // no point closer than h_s after the last pass
+};
+
+// Moves the points of `cells` (grid of `grid_transform`: the paper's N x 2N grid, or a finer
+// one whose points are then the tested surface points; the correction is analysed at each
+// cell's own order) apart to separation `threshold`. `period`: box sides of the periodic
+// directions, 0 where not periodic. `wall` may be null. Cells with nothing closer than
+// `threshold` are left bit-identical.
+CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
+                                  const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
+                                  int max_iterations = 20);
+
+}  // namespace rbcflow

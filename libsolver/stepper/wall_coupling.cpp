@@ -1,0 +1,55 @@
+#include "wall_coupling.h"
+
+#include <Eigen/LU>
+#include <numbers>
+
+namespace rbcflow {
+
+WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const PeriodicBox& box, double ewald_tolerance,
+                           const WallSolveOptions& options)
+    : elements_(std::move(wall)),
+      box_(box),
+      ewald_tolerance_(ewald_tolerance),
+      options_(options),
+      solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance)) {}
+
+WallSolution WallCoupling::solve(const PointField& v, const PointField& guess) {
+  return solver_.solve(v, 1.0, options_, guess);
+}
+
+Eigen::Vector3d WallCoupling::pressure_gradient(const PointField& force) const {
+  return mean_pressure_gradient(*elements_, force, box_.volume());
+}
+
+const std::array<PointField, 3>& WallCoupling::unit_forces() {
+  if (!unit_forces_) {
+    std::array<PointField, 3> f;
+    for (int j = 0; j < 3; ++j) {
+      Eigen::RowVector3d e = Eigen::RowVector3d::Zero();
+      e[j] = 1.0;
+      f[j] = solve(e.replicate(elements_->num_nodes(), 1), {}).force;
+    }
+    unit_forces_ = std::move(f);
+  }
+  return *unit_forces_;
+}
+
+Eigen::Vector3d WallCoupling::mean_velocity_for(const Eigen::Vector3d& target, const PointField& cell_force) {
+  Eigen::Matrix3d R;  // <grad p> per unit <u>_j
+  for (int j = 0; j < 3; ++j) R.col(j) = pressure_gradient(unit_forces()[j]);
+  const Eigen::Vector3d rest = cell_force.rows() ? pressure_gradient(cell_force) : Eigen::Vector3d::Zero();
+  return R.fullPivLu().solve(target - rest);
+}
+
+PointField WallCoupling::force_for_mean_velocity(const Eigen::Vector3d& mean_velocity) {
+  PointField f = PointField::Zero(elements_->num_nodes(), 3);
+  for (int j = 0; j < 3; ++j) f += mean_velocity[j] * unit_forces()[j];
+  return f;
+}
+
+PointField WallCoupling::velocity_at(const PointField& points, const PointField& force) const {
+  WallOperator op(elements_, points, box_, ewald_tolerance_);
+  return (-1.0 / (8.0 * std::numbers::pi)) * op.apply(force);
+}
+
+}  // namespace rbcflow

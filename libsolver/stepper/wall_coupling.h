@@ -1,0 +1,49 @@
+#pragma once
+// The vessel wall in the staggered scheme of section 2: the wall-wall operator of (12) and
+// its preconditioner are built once per run (the wall does not move); each step solves (12),
+//   (1/(8 pi mu)) N_W F = <u> - (1/(8 pi mu)) N_D f + (1 - lambda)/(8 pi) K_D U   at the wall
+// nodes, for the wall force F, and gives the wall's velocity -(1/(8 pi mu)) N_W F at the cell
+// nodes for (10). F is the force density of the fluid on the wall, so <grad p> = -(1/V) int F
+// (eq. 8). With a prescribed <grad p>, <u> is found from the wall's response to a unit mean
+// velocity along each axis (three solves, once per run): (8) is linear in <u>.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "libsolver/wall/wall_solver.h"
+
+namespace rbcflow {
+
+class WallCoupling {
+ public:
+  WallCoupling(std::shared_ptr<const WallElements> wall, const PeriodicBox& box, double ewald_tolerance,
+               const WallSolveOptions& options);
+
+  const WallElements& elements() const { return *elements_; }
+  const PointField& nodes() const { return elements_->wall.surface.points; }
+  const PeriodicBox& box() const { return box_; }
+
+  // F for the velocity `v` the wall must cancel at its nodes (mu = 1); `guess` may be empty.
+  WallSolution solve(const PointField& v, const PointField& guess);
+  // <grad p> of (8) for a wall force.
+  Eigen::Vector3d pressure_gradient(const PointField& force) const;
+  // The mean velocity that gives `target` = <grad p> when the cells alone induce a wall force
+  // F_cells (the solution of (12) with <u> = 0); F = F_cells + sum_j <u>_j F_unit_j.
+  Eigen::Vector3d mean_velocity_for(const Eigen::Vector3d& target, const PointField& cell_force);
+  PointField force_for_mean_velocity(const Eigen::Vector3d& mean_velocity);
+  // -(1/(8 pi mu)) N_W F at arbitrary points (the cell nodes), with the near-field correction.
+  PointField velocity_at(const PointField& points, const PointField& force) const;
+
+ private:
+  const std::array<PointField, 3>& unit_forces();
+
+  std::shared_ptr<const WallElements> elements_;
+  PeriodicBox box_;
+  double ewald_tolerance_;
+  WallSolveOptions options_;
+  WallSolver solver_;
+  std::optional<std::array<PointField, 3>> unit_forces_;
+};
+
+}  // namespace rbcflow
