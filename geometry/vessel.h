@@ -6,6 +6,7 @@
 // check_mesh; gmsh errors become std::runtime_error. gmsh stays inside library rbcflow_vessel
 // (gmsh::initialize() sets the OpenMP thread count to 1; the builders restore it).
 #include <Eigen/Core>
+#include <array>
 #include <string>
 
 #include "vessel_mesh.h"
@@ -30,6 +31,31 @@ struct ConstrictionSpec {
   double diameter(double z) const;
 };
 VesselMesh constriction(const ConstrictionSpec& spec);
+
+// A parent tube (tube.diameter D) that splits at `centre` along the axis into two daughters,
+// which leave at +-angle_deg / 2 to the axis in the plane of the axis and the first frame
+// direction (x for a z axis), turn parallel to the axis and merge back into the parent half a
+// box length later (wrapped through the box): one period is a parent half and a two-daughter
+// loop half, so the wall closes through the box faces like the tube. Parent and daughters
+// meet in spheres of the parent's radius at the split and merge points; daughter diameters
+// must be below D. Layout in docs/walls.md.
+struct BifurcationSpec {
+  TubeSpec tube;  // the parent
+  std::array<double, 2> daughter_diameters{};
+  double angle_deg = 0.0;  // between the two daughters
+  double centre = 0.0;     // the split, along the axis from the box face
+};
+VesselMesh bifurcation(const BifurcationSpec& spec);
+
+// The daughters' centrelines: straight at +-angle / 2 for `straight[i]`, a circular arc of
+// radius `bend_radius[i]` to the axis direction, `parallel[i]` along it at the lateral
+// `offset` from the parent's axis, then the mirror image back to the merge point. Throws
+// std::invalid_argument (naming the value and what it needs) when the loop does not fit the box.
+struct BifurcationLayout {
+  double offset = 0.0;  // max(r1, r2) + (r1 + r2) / 4: a gap of (r1 + r2) / 2 between daughters
+  std::array<double, 2> straight{}, bend_radius{}, parallel{};
+};
+BifurcationLayout bifurcation_layout(const BifurcationSpec& spec);
 
 // A surface mesh file read by gmsh (.msh, .stl, ...), its triangles kept as given (duplicate
 // STL nodes merged); `period` as in VesselMesh. Throws for an unreadable file or a bad mesh.
