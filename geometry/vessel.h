@@ -58,8 +58,25 @@ struct BifurcationLayout {
 BifurcationLayout bifurcation_layout(const BifurcationSpec& spec);
 
 // A surface mesh file read by gmsh (.msh, .stl, ...), its triangles kept as given (duplicate
-// STL nodes merged); `period` as in VesselMesh. Throws for an unreadable file or a bad mesh.
-VesselMesh read_vessel(const std::string& path, const Eigen::Vector3d& period = Eigen::Vector3d::Zero());
+// STL nodes merged) but for scaling by `scale` and a whole-surface flip where every normal
+// points out of the lumen; `period` as in VesselMesh: nodes that coincide modulo the period (a
+// seam written twice) are merged. Throws for an unreadable file or a bad mesh.
+VesselMesh read_vessel(const std::string& path, const Eigen::Vector3d& period = Eigen::Vector3d::Zero(),
+                       double scale = 1.0);
+
+// A CAD vessel (.step/.stp, .iges/.igs) imported by OpenCASCADE, scaled by `scale` (STEP
+// lengths as OpenCASCADE reads them: millimetres), its faces meshed with triangles of the target
+// size. Its surface must span the box along `axis` (from 0 to the box side, the box-face cuts
+// matching): faces flat in the two box faces (end caps of a solid) are dropped and the end
+// curves meshed periodically, as for the tube.
+struct CadVesselSpec {
+  std::string path;
+  double scale = 1.0;
+  int axis = 2;
+  Eigen::Vector3d box = Eigen::Vector3d::Zero();
+  double element_size = 0.0;
+};
+VesselMesh import_cad_vessel(const CadVesselSpec& spec);
 
 // Writes the triangles by gmsh; the format follows the extension (.msh, .stl).
 void write_vessel(const VesselMesh& wall, const std::string& path);

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "geometry/aabb_tree.h"
 #include "geometry/mesh_check.h"
+#include "geometry/mesh_orientation.h"
 
 using namespace rbcflow;
 
@@ -207,4 +209,36 @@ TEST(Vessel, AabbDistanceToTubeConvergesAtSecondOrder) {
     previous = error;
     previous_h = h;
   }
+}
+
+// A periodic mesh written with its seam on both box faces (as CAD tools export a tube) and with
+// outward normals: read_vessel merges the copies modulo the period and turns the normals into
+// the lumen; `scale` multiplies the coordinates.
+TEST(Vessel, ReadMergesPeriodicCopiesAndOrientsIntoTheLumen) {
+  const VesselMesh wall = tube(small_tube());
+  VesselMesh open;  // nodes at the unwrapped positions: those past the far face are copies
+  std::vector<Eigen::Vector3d> nodes;
+  open.surface.triangles.resize(wall.surface.num_triangles(), 3);
+  for (int t = 0; t < wall.surface.num_triangles(); ++t) {
+    const Eigen::Matrix3d v = triangle_vertices(wall, t);
+    for (int a = 0; a < 3; ++a) {
+      int k = 0;
+      while (k < static_cast<int>(nodes.size()) && (nodes[k] - v.col(a)).norm() > 1e-12) ++k;
+      if (k == static_cast<int>(nodes.size())) nodes.push_back(v.col(a));
+      open.surface.triangles(t, a == 0 ? 0 : 3 - a) = k;  // reversed: normals out of the lumen
+    }
+  }
+  open.surface.points.resize(static_cast<int>(nodes.size()), 3);
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) open.surface.points.row(i) = nodes[i].transpose();
+  ASSERT_GT(open.surface.num_points(), wall.surface.num_points());  // the seam copies
+  EXPECT_GT(lumen_flux(VesselMesh{open.surface, wall.period}), 0.0);
+
+  const std::string path = temp_path("open_tube.msh");
+  write_vessel(open, path);
+  const VesselMesh back = read_vessel(path, 2.0 * wall.period, 2.0);
+  std::filesystem::remove(path);
+  EXPECT_EQ(back.surface.num_points(), wall.surface.num_points());
+  EXPECT_EQ(back.surface.num_triangles(), wall.surface.num_triangles());
+  EXPECT_LT(lumen_flux(back), 0.0);
+  EXPECT_NEAR(check_mesh(back).area, 4.0 * check_mesh(wall).area, 1e-12 * check_mesh(back).area);
 }
