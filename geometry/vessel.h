@@ -69,14 +69,18 @@ VesselMesh read_vessel(const std::string& path, const Eigen::Vector3d& period = 
 // size. Its surface must span the box along `axis` (from 0 to the box side, the box-face cuts
 // matching): faces flat in the two box faces (end caps of a solid) are dropped and the end
 // curves meshed periodically, as for the tube.
-struct CadVesselSpec {
+struct VesselFileSpec {
   std::string path;
   double scale = 1.0;
   int axis = 2;
   Eigen::Vector3d box = Eigen::Vector3d::Zero();
   double element_size = 0.0;
 };
-VesselMesh import_cad_vessel(const CadVesselSpec& spec);
+VesselMesh import_cad_vessel(const VesselFileSpec& spec);
+
+// The vessel of a case's `file` kind: .step/.stp/.iges/.igs by import_cad_vessel, other
+// extensions (.msh, .stl) by read_vessel, periodic along `axis` with the box side as period.
+VesselMesh vessel_file(const VesselFileSpec& spec);
 
 // Writes the triangles by gmsh; the format follows the extension (.msh, .stl).
 void write_vessel(const VesselMesh& wall, const std::string& path);

@@ -1,6 +1,10 @@
-// CAD vessels through OpenCASCADE: import, scale, drop the end caps, mesh periodically.
+// CAD vessels through OpenCASCADE: import, scale, drop the end caps, mesh periodically; and
+// the choice between CAD and mesh files by extension.
 #include <gmsh.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -20,7 +24,7 @@ std::string number(double x) {
   return buf;
 }
 
-VesselMesh build_cad_vessel(const CadVesselSpec& spec) {
+VesselMesh build_cad_vessel(const VesselFileSpec& spec) {
   namespace occ = gmsh::model::occ;
   std::vector<std::pair<int, int>> shapes;
   try {
@@ -58,7 +62,7 @@ VesselMesh build_cad_vessel(const CadVesselSpec& spec) {
 
 }  // namespace
 
-VesselMesh import_cad_vessel(const CadVesselSpec& spec) {
+VesselMesh import_cad_vessel(const VesselFileSpec& spec) {
   if (!std::filesystem::is_regular_file(spec.path))
     throw std::runtime_error("CAD file " + spec.path + " does not exist");
   if (std::filesystem::file_size(spec.path) == 0) throw std::runtime_error("CAD file " + spec.path + " is empty");
@@ -73,6 +77,16 @@ VesselMesh import_cad_vessel(const CadVesselSpec& spec) {
     if (what.find(spec.path) != std::string::npos) throw;
     throw std::runtime_error("CAD vessel " + spec.path + ": " + what);
   }
+}
+
+VesselMesh vessel_file(const VesselFileSpec& spec) {
+  std::string ext = std::filesystem::path(spec.path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs") return import_cad_vessel(spec);
+  if (spec.axis < 0 || spec.axis > 2) throw std::invalid_argument("vessel axis must be 0, 1 or 2");
+  Eigen::Vector3d period = Eigen::Vector3d::Zero();
+  period[spec.axis] = spec.box[spec.axis];
+  return read_vessel(spec.path, period, spec.scale);
 }
 
 }  // namespace rbcflow

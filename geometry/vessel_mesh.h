@@ -26,4 +26,9 @@ Eigen::Vector3d minimum_image(const Eigen::Vector3d& d, const Eigen::Vector3d& p
 // The three vertices of triangle t as columns, unwrapped next to the first one.
 Eigen::Matrix3d triangle_vertices(const VesselMesh& wall, int t);
 
+// The triangles for drawing (ParaView): each triangle unwrapped as triangle_vertices does, the
+// nodes of a triangle that crosses the box face copied to the far side, so that no triangle
+// spans the box. Not periodic: for output only.
+TriangleMesh drawable_surface(const VesselMesh& wall);
+
 }  // namespace rbcflow

@@ -242,3 +242,22 @@ TEST(Vessel, ReadMergesPeriodicCopiesAndOrientsIntoTheLumen) {
   EXPECT_LT(lumen_flux(back), 0.0);
   EXPECT_NEAR(check_mesh(back).area, 4.0 * check_mesh(wall).area, 1e-12 * check_mesh(back).area);
 }
+
+// For ParaView: no triangle spans the box (seam nodes copied), the same triangles and area.
+TEST(Vessel, DrawableSurfaceHasNoTriangleAcrossTheBox) {
+  const VesselMesh wall = tube(small_tube());
+  const MeshQuality q = check_mesh(wall);
+  const TriangleMesh d = drawable_surface(wall);
+  ASSERT_EQ(d.num_triangles(), wall.surface.num_triangles());
+  EXPECT_GT(d.num_points(), wall.surface.num_points());
+  double area = 0, longest = 0;
+  for (int t = 0; t < d.num_triangles(); ++t) {
+    Eigen::Matrix3d v;
+    for (int a = 0; a < 3; ++a) v.col(a) = d.points.row(d.triangles(t, a)).transpose();
+    EXPECT_LT((v - triangle_vertices(wall, t)).cwiseAbs().maxCoeff(), 1e-14);
+    area += 0.5 * (v.col(1) - v.col(0)).cross(v.col(2) - v.col(0)).norm();
+    for (int a = 0; a < 3; ++a) longest = std::max(longest, (v.col((a + 1) % 3) - v.col(a)).norm());
+  }
+  EXPECT_NEAR(area, q.area, 1e-12 * q.area);
+  EXPECT_LE(longest, q.max_edge + 1e-12);
+}

@@ -30,7 +30,7 @@ void write_cylinder(const std::string& path, const Eigen::Vector3d& x, const Eig
   ASSERT_TRUE(std::filesystem::is_regular_file(path)) << "gmsh did not write " << path;
 }
 
-void expect_error(const CadVesselSpec& spec, const std::string& words) {
+void expect_error(const VesselFileSpec& spec, const std::string& words) {
   try {
     import_cad_vessel(spec);
     FAIL() << "no error, expected one about " << words;
@@ -40,8 +40,8 @@ void expect_error(const CadVesselSpec& spec, const std::string& words) {
 }
 
 // D = 3.5 in a 5 x 5 x 4 box, along z.
-CadVesselSpec cylinder_spec(const std::string& path) {
-  CadVesselSpec s;
+VesselFileSpec cylinder_spec(const std::string& path) {
+  VesselFileSpec s;
   s.path = path;
   s.axis = 2;
   s.box = Eigen::Vector3d(5, 5, 4);
@@ -56,7 +56,7 @@ CadVesselSpec cylinder_spec(const std::string& path) {
 TEST(CadVessel, StepCylinderMeshesLikeTheTube) {
   const std::string path = temp_path("cylinder.step");
   write_cylinder(path, Eigen::Vector3d(2.5, 2.5, 0), Eigen::Vector3d(0, 0, 4), 1.75);
-  const CadVesselSpec s = cylinder_spec(path);
+  const VesselFileSpec s = cylinder_spec(path);
   const VesselMesh wall = import_cad_vessel(s);
   std::filesystem::remove(path);
   EXPECT_EQ(wall.period, Eigen::Vector3d(0, 0, 4));
@@ -86,11 +86,11 @@ TEST(CadVessel, StepCylinderMeshesLikeTheTube) {
 TEST(CadVessel, StepAlongXScaled) {
   const std::string path = temp_path("cylinder_x.stp");
   write_cylinder(path, Eigen::Vector3d(0, 1.25, 1.25), Eigen::Vector3d(2, 0, 0), 0.875);
-  CadVesselSpec s = cylinder_spec(path);
+  VesselFileSpec s = cylinder_spec(path);
   s.axis = 0;
   s.box = Eigen::Vector3d(4, 5, 5);
   s.scale = 2.0;
-  const VesselMesh wall = import_cad_vessel(s);
+  const VesselMesh wall = vessel_file(s);  // .stp: the CAD import
   std::filesystem::remove(path);
   EXPECT_EQ(wall.period, Eigen::Vector3d(4, 0, 0));
   EXPECT_LT(lumen_flux(wall), 0.0);
