@@ -31,5 +31,6 @@ int run_info(Args& args);
 int run_shape(Args& args);
 int run_check(Args& args);
 int run_render(Args& args);
+int run_run(Args& args);
 
 }  // namespace rbcflow::cli

@@ -14,6 +14,7 @@ void print_usage() {
   std::printf(
       "usage: rbcflow COMMAND [ARGS]\n"
       "commands:\n"
+      "  run CASE.toml        run a case (ParaView output, diagnostics, checkpoints)\n"
       "  check CASE.toml      validate a case; print derived parameters\n"
       "  render OUTDIR -o F.png  render a saved frame (or --plot the diagnostics)\n"
       "  info                 version, libraries, threads\n"
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   Args args(command, std::vector<std::string>(argv + 2, argv + argc));
   try {
+    if (command == "run") return run_run(args);
     if (command == "info") return run_info(args);
     if (command == "shape") return run_shape(args);
     if (command == "check") return run_check(args);

@@ -1,0 +1,36 @@
+#pragma once
+// What a run writes, from the stepper's state and the flow just solved: the surfaces of a
+// frame (cells with velocity, force, tension, J_S; the wall with its traction), the rows of
+// cells.csv, and checkpoints (CASE_FORMAT.md "Output directory").
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/case.h"
+#include "io/checkpoint.h"
+#include "io/csv.h"
+#include "io/surface.h"
+#include "libsolver/stepper/cell_stepper.h"
+
+namespace rbcflow::cli {
+
+// The cells (merged, with a `cell` index) and the wall of the state X^n with the flow s
+// solved there.
+std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s);
+
+// One row per cell; `flow_axis` for the inclination (signed in the x-z plane of a shear flow
+// along x, otherwise the angle to the axis in [0, pi/2]).
+std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear);
+
+// The state of the stepper (stepper.h StepperState), the wall mesh and the cells' reference
+// shapes, under the case's fingerprint.
+void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+// Reads a checkpoint written by write_checkpoint for this case into the stepper; throws
+// CheckpointError (exit 2) naming the file when it does not fit the case.
+void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+
+// checkpoints/step_NNNNNNNN.h5 and renders/step_NNNNNNNN.png under the output directory.
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir, long step);
+std::filesystem::path render_path(const std::filesystem::path& dir, long step);
+
+}  // namespace rbcflow::cli

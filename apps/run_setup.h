@@ -1,0 +1,29 @@
+#pragma once
+// From a case to a ready stepper: the vessel meshed, the cells built (reference shape, placed,
+// perturbed), their membranes, the domain and the time step. The one place where the case's
+// keys meet libsolver's options.
+#include <memory>
+#include <vector>
+
+#include "geometry/vessel_mesh.h"
+#include "io/case.h"
+#include "libsolver/stepper/cell_stepper.h"
+
+namespace rbcflow::cli {
+
+// The vessel of the case (tube, constriction, bifurcation or a mesh file), checked.
+VesselMesh build_vessel(const Case& c);
+
+struct RunSetup {
+  std::shared_ptr<const CellGrids> grids;
+  std::vector<Cell> cells;
+  std::shared_ptr<const WallElements> wall;  // null without a vessel
+  CellStepperOptions options;
+  long steps = 0;  // to reach time.end
+  std::optional<double> tube_radius;  // a straight tube: for (45)-(46)
+};
+
+// Throws CaseError for what only shows once meshed or placed (cells outside the vessel).
+RunSetup setup_run(const Case& c);
+
+}  // namespace rbcflow::cli
