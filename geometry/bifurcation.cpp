@@ -152,8 +152,9 @@ BifurcationLayout bifurcation_layout(const BifurcationSpec& spec) {
     const double parallel = 0.5 * length - 2 * transition;
     if (parallel < 0)
       throw std::invalid_argument("bifurcation daughters at " + number(spec.angle_deg) + " degrees need " +
-                                  number(4 * transition) + " along the axis (split to merge is half the box, " +
-                                  number(0.5 * length) + "): lengthen the box or widen the angle");
+                                  number(2 * transition) + " from split to merge, half the box side along the axis (" +
+                                  number(0.5 * length) + "): make that side at least " + number(4 * transition) +
+                                  " or widen the angle");
     l.straight[i] = straight;
     l.bend_radius[i] = bend;
     l.parallel[i] = parallel < 1e-9 * length ? 0.0 : parallel;

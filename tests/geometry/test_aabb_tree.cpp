@@ -44,14 +44,23 @@ TEST(TriangleAabbTree, ClosestPointsEqualBruteForce) {
   for (int q = 0; q < 200; ++q) {
     const Eigen::Vector3d p(u(gen), u(gen), 0.5 * u(gen));
     double best = std::numeric_limits<double>::max();
+    Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
+    auto closest_on = [&](int t) {
+      return closest_on_triangle(p, mesh.points.row(mesh.triangles(t, 0)), mesh.points.row(mesh.triangles(t, 1)),
+                                 mesh.points.row(mesh.triangles(t, 2)));
+    };
     for (int t = 0; t < mesh.num_triangles(); ++t) {
-      const Eigen::Vector3d c = closest_on_triangle(p, mesh.points.row(mesh.triangles(t, 0)),
-                                                    mesh.points.row(mesh.triangles(t, 1)),
-                                                    mesh.points.row(mesh.triangles(t, 2)));
-      best = std::min(best, (c - p).norm());
+      const Eigen::Vector3d c = closest_on(t);
+      if ((c - p).norm() < best) {
+        best = (c - p).norm();
+        best_point = c;
+      }
     }
     const auto hit = tree.closest_point(p);
     EXPECT_NEAR(hit.distance, best, 1e-12);
+    // The same point (ties are points on a shared edge or vertex, hence equal) on the triangle named.
+    EXPECT_LT((hit.point - best_point).norm(), 1e-12);
+    EXPECT_LT((closest_on(hit.triangle) - hit.point).norm(), 1e-12);
     EXPECT_NEAR(std::sqrt(tree.squared_distance(p)), best, 1e-12);
     EXPECT_EQ(tree.any_within(p, best * 1.001), true);
     EXPECT_EQ(tree.any_within(p, best * 0.999), false);

@@ -106,7 +106,7 @@ TEST(Bifurcation, InfeasibleLayoutsNameTheValue) {
   expect_invalid(s, "daughter diameter 3 must be in (0, 3)");
   s = example();
   s.angle_deg = 10.0;  // a shallow angle needs a long loop
-  expect_invalid(s, "lengthen the box");
+  expect_invalid(s, "or widen the angle");
   s = example();
   s.tube.box[0] = 5.5;
   expect_invalid(s, "the box gives 2.75 (half its side x)");
