@@ -8,6 +8,10 @@
 #include "cli.h"
 #include "io/input_error.h"
 
+namespace rbcflow::cli {
+int run_mesh(Args& args);  // cmd_mesh.cpp
+}  // namespace rbcflow::cli
+
 namespace {
 
 void print_usage() {
@@ -16,6 +20,7 @@ void print_usage() {
       "commands:\n"
       "  run CASE.toml        run a case (ParaView output, diagnostics, checkpoints)\n"
       "  check CASE.toml      validate a case; print derived parameters\n"
+      "  mesh CASE.toml -o W.msh  mesh the vessel; write W.msh and W.vtp\n"
       "  render OUTDIR -o F.png  render a saved frame (or --plot the diagnostics)\n"
       "  info                 version, libraries, threads\n"
       "  shape NAME -o F.vtp  export a reference cell shape (rbc, sphere, ellipsoid, ...)\n"
@@ -37,6 +42,7 @@ int main(int argc, char** argv) {
     if (command == "info") return run_info(args);
     if (command == "shape") return run_shape(args);
     if (command == "check") return run_check(args);
+    if (command == "mesh") return run_mesh(args);
     if (command == "render") return run_render(args);
     std::fprintf(stderr, "rbcflow: unknown command '%s'\n", command.c_str());
     print_usage();
