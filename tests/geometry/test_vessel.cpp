@@ -261,3 +261,44 @@ TEST(Vessel, DrawableSurfaceHasNoTriangleAcrossTheBox) {
   EXPECT_NEAR(area, q.area, 1e-12 * q.area);
   EXPECT_LE(longest, q.max_edge + 1e-12);
 }
+
+// The same defects in a mesh file: the error names the file and the problem.
+TEST(Vessel, BadMeshFilesNameTheFileAndTheProblem) {
+  const VesselMesh good = tube(small_tube());
+  auto expect_file_error = [&](const VesselMesh& bad, const std::string& name, const std::string& words) {
+    const std::string path = temp_path(name);
+    write_vessel(VesselMesh{bad.surface, Eigen::Vector3d::Zero()}, path);
+    try {
+      read_vessel(path, good.period);
+      ADD_FAILURE() << "no error, expected one about " << words;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(path);
+  };
+  VesselMesh hole = good;
+  hole.surface.triangles.conservativeResize(good.surface.num_triangles() - 1, 3);
+  expect_file_error(hole, "hole.msh", "has a hole");
+  VesselMesh flipped = good;
+  flipped.surface.triangles.row(7) = Eigen::RowVector3i(good.surface.triangles(7, 0), good.surface.triangles(7, 2),
+                                                        good.surface.triangles(7, 1));
+  expect_file_error(flipped, "flipped.msh", "flipped triangle");
+  VesselMesh extra = good;  // a third triangle on the edge of triangle 0
+  extra.surface.points.conservativeResize(good.surface.num_points() + 1, 3);
+  extra.surface.points.row(good.surface.num_points()) = Eigen::RowVector3d(2.5, 2.5, 2.0);
+  extra.surface.triangles.conservativeResize(good.surface.num_triangles() + 1, 3);
+  extra.surface.triangles.row(good.surface.num_triangles()) = Eigen::RowVector3i(
+      good.surface.triangles(0, 0), good.surface.triangles(0, 1), good.surface.num_points());
+  expect_file_error(extra, "nonmanifold.stl", "not manifold");
+
+  const std::string empty = temp_path("empty.msh");
+  std::ofstream(empty).close();
+  try {
+    read_vessel(empty, good.period);
+    ADD_FAILURE() << "no error for an empty file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(empty + " is empty"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(empty);
+}
