@@ -1,0 +1,66 @@
+// compare_runs CASE.toml DIR_A DIR_B STEP TOLERANCE: exit 0 when the two output directories
+// hold the same checkpoint at STEP (every matrix within TOLERANCE, absolute) and the same
+// diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the larger
+// magnitude); prints the largest differences. For the restart test: an uninterrupted run
+// against one stopped and restarted from a checkpoint.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "io/case.h"
+#include "io/checkpoint.h"
+#include "io/csv.h"
+#include "io/xdmf_writer.h"
+
+using namespace rbcflow;
+
+int main(int argc, char** argv) {
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: compare_runs CASE.toml DIR_A DIR_B STEP TOLERANCE\n");
+    return 2;
+  }
+  const Case c = read_case(argv[1]);
+  const std::string a = argv[2], b = argv[3], label = "checkpoints/step_" + step_label(std::stol(argv[4])) + ".h5";
+  const double tolerance = std::stod(argv[5]);
+  const Checkpoint ka = Checkpoint::read(a + "/" + label, case_fingerprint(c));
+  const Checkpoint kb = Checkpoint::read(b + "/" + label, case_fingerprint(c));
+  double worst = 0;
+  bool ok = ka.names() == kb.names();
+  if (!ok) std::printf("the checkpoints hold different items\n");
+  for (const std::string& name : ka.names()) {
+    if (!kb.has(name)) continue;
+    double d = 0;
+    try {
+      const Eigen::MatrixXd& x = ka.matrix(name);
+      const Eigen::MatrixXd& y = kb.matrix(name);
+      d = x.rows() == y.rows() && x.cols() == y.cols() ? (x - y).cwiseAbs().maxCoeff() : INFINITY;
+    } catch (const CheckpointError&) {
+      continue;  // not a double matrix: compared below when an integer or real
+    }
+    std::printf("%-32s max |a - b| = %.3e\n", name.c_str(), d);
+    worst = std::max(worst, d);
+  }
+  if (ka.integer("steps") != kb.integer("steps") || ka.real("time") != kb.real("time")) ok = false;
+
+  const CsvTable da = read_csv(a + "/diagnostics.csv"), db = read_csv(b + "/diagnostics.csv");
+  if (da.rows.size() != db.rows.size() || da.columns != db.columns) {
+    std::printf("diagnostics.csv: %zu rows against %zu\n", da.rows.size(), db.rows.size());
+    ok = false;
+  } else {
+    const std::size_t seconds = da.column("seconds");
+    double worst_row = 0;
+    for (std::size_t r = 0; r < da.rows.size(); ++r) {
+      for (std::size_t k = 0; k < da.columns.size(); ++k) {
+        if (k == seconds || da.rows[r][k] == db.rows[r][k]) continue;
+        const double x = std::stod(da.rows[r][k]), y = std::stod(db.rows[r][k]);
+        worst_row = std::max(worst_row, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-300}));
+      }
+    }
+    std::printf("diagnostics.csv: %zu rows, max relative difference %.3e\n", da.rows.size(), worst_row);
+    ok = ok && worst_row <= tolerance;
+  }
+  ok = ok && worst <= tolerance;
+  std::printf("%s\n", ok ? "same" : "DIFFERENT");
+  return ok ? 0 : 1;
+}
