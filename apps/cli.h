@@ -32,5 +32,6 @@ int run_shape(Args& args);
 int run_check(Args& args);
 int run_render(Args& args);
 int run_run(Args& args);
+int run_mesh(Args& args);
 
 }  // namespace rbcflow::cli

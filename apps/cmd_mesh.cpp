@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "case_vessel.h"
 #include "cli.h"
 #include "geometry/mesh_check.h"
 #include "geometry/mesh_orientation.h"
@@ -17,61 +18,6 @@ namespace rbcflow::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-Eigen::Vector3d to_eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
-
-TubeSpec tube_spec(const Case& c) {
-  TubeSpec t;
-  t.diameter = c.vessel->diameter;
-  t.axis = c.vessel->axis;
-  t.box = to_eigen(c.domain.box);
-  t.element_size = c.vessel->element_size;
-  return t;
-}
-
-VesselMesh build(const Case& c) {
-  const CaseVessel& v = *c.vessel;
-  switch (v.kind) {
-    case VesselKind::tube: return tube(tube_spec(c));
-    case VesselKind::constriction: {
-      ConstrictionSpec s;
-      s.tube = tube_spec(c);
-      s.depth = v.depth;
-      s.width = v.width;
-      s.centre = v.center;
-      return constriction(s);
-    }
-    case VesselKind::bifurcation: {
-      BifurcationSpec s;
-      s.tube = tube_spec(c);
-      s.daughter_diameters = v.daughter_diameters;
-      s.angle_deg = v.angle_deg;
-      s.centre = v.center;
-      return bifurcation(s);
-    }
-    case VesselKind::file: {
-      VesselFileSpec s;
-      s.path = v.path.string();
-      s.scale = v.scale;
-      s.axis = v.axis;
-      s.box = to_eigen(c.domain.box);
-      s.element_size = v.element_size;
-      return vessel_file(s);
-    }
-  }
-  throw std::logic_error("rbcflow mesh: unknown vessel kind");
-}
-
-// The vessel of the case; what the builders reject (an infeasible layout, a bad mesh file) is
-// an error in the case's [vessel] table (exit status 2).
-VesselMesh mesh_vessel(const Case& c) {
-  if (!c.vessel) throw case_error(c, "vessel", "the case has no [vessel] table: there is no wall to mesh");
-  try {
-    return build(c);
-  } catch (const std::exception& e) {
-    throw case_error(c, c.vessel->kind == VesselKind::file ? "vessel.path" : "vessel", e.what());
-  }
-}
 
 // Fails before the (possibly long) meshing when the output cannot be written.
 void check_writable(const fs::path& out) {
@@ -106,7 +52,7 @@ int run_mesh(Args& args) {
   check_writable(msh);
 
   const auto start = std::chrono::steady_clock::now();
-  const VesselMesh wall = mesh_vessel(c);
+  const VesselMesh wall = build_vessel(c);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const MeshQuality q = check_mesh(wall);
   int periodic = 0;

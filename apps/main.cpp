@@ -8,10 +8,6 @@
 #include "cli.h"
 #include "io/input_error.h"
 
-namespace rbcflow::cli {
-int run_mesh(Args& args);  // cmd_mesh.cpp
-}  // namespace rbcflow::cli
-
 namespace {
 
 void print_usage() {

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "geometry/inertia_ellipsoid.h"
+#include "geometry/vessel_mesh.h"
 #include "io/xdmf_writer.h"
 
 namespace rbcflow::cli {
@@ -44,8 +45,15 @@ std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSoluti
     surfaces.push_back(merge_surfaces("cells", parts));
   }
   if (const WallCoupling* wall = stepper.wall()) {
-    Surface w{"wall", wall->elements().wall.surface, {}};
-    w.fields = {{"traction", s.wall_force}};
+    // Drawn without triangles across the box: nodes on the far side of a face are copies,
+    // whose traction is their original node's.
+    const TriangleMesh& mesh = wall->elements().wall.surface;
+    Surface w{"wall", drawable_surface(wall->elements().wall), {}};
+    Eigen::MatrixXd traction(w.mesh.num_points(), 3);
+    traction.topRows(mesh.num_points()) = s.wall_force;
+    for (int t = 0; t < mesh.num_triangles(); ++t)
+      for (int a = 0; a < 3; ++a) traction.row(w.mesh.triangles(t, a)) = s.wall_force.row(mesh.triangles(t, a));
+    w.fields = {{"traction", traction}};
     surfaces.push_back(std::move(w));
   }
   return surfaces;

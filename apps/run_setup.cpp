@@ -3,8 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "geometry/mesh_check.h"
-#include "geometry/vessel.h"
+#include "case_vessel.h"
+#include "geometry/cell_placement.h"
+#include "geometry/wall_distance.h"
 #include "io/case_derived.h"
 #include "io/cell_layout.h"
 #include "libsolver/membrane/membrane_law.h"
@@ -13,16 +14,9 @@ namespace rbcflow::cli {
 
 namespace {
 
-Eigen::Vector3d to_eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+constexpr double kMinimumPlacementGap = 0.05;
 
-TubeSpec tube_spec(const Case& c) {
-  TubeSpec t;
-  t.diameter = c.vessel->diameter;
-  t.axis = c.vessel->axis;
-  t.box = to_eigen(c.domain.box);
-  t.element_size = c.vessel->element_size;
-  return t;
-}
+Eigen::Vector3d to_eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
 // The perturbation of section 9 added to a cell: amplitude Y_lm n, with Y_lm the real
 // spherical harmonic of unit mean square on the sphere (m < 0: sin(|m| phi)) and n the
@@ -54,41 +48,33 @@ std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background(const Backgrou
   return [](const Eigen::Vector3d&) { return Eigen::Vector3d::Zero().eval(); };
 }
 
-}  // namespace
-
-VesselMesh build_vessel(const Case& c) {
-  const CaseVessel& v = *c.vessel;
-  try {
-    switch (v.kind) {
-      case VesselKind::tube: return tube(tube_spec(c));
-      case VesselKind::constriction: {
-        ConstrictionSpec s;
-        s.tube = tube_spec(c);
-        s.depth = v.depth;
-        s.width = v.width;
-        s.centre = v.center;
-        return constriction(s);
-      }
-      case VesselKind::bifurcation: {
-        BifurcationSpec s;
-        s.tube = tube_spec(c);
-        s.daughter_diameters = v.daughter_diameters;
-        s.angle_deg = v.angle_deg;
-        s.centre = v.center;
-        return bifurcation(s);
-      }
-      case VesselKind::file: {
-        VesselMesh wall = read_vessel(v.path.string());
-        wall.surface.points *= v.scale;
-        check_mesh(wall);
-        return wall;
-      }
-    }
-  } catch (const std::exception& e) {
-    throw case_error(c, v.kind == VesselKind::file ? "vessel.path" : "vessel", e.what());
+// Cells placed at random without overlap (a count, or the tube hematocrit of the meshed
+// lumen), at least the collision threshold (and 0.05) apart and from the wall.
+std::vector<SHSurface> random_cells(const Case& c, const VesselMesh* vessel) {
+  const CaseCells& k = *c.cells;
+  if (c.domain.kind != DomainKind::periodic) {
+    throw case_error(c, "cells.positions", "cells in a free domain must be listed (positions = [[x, y, z], ...])");
   }
-  throw std::logic_error("build_vessel: unknown vessel kind");
+  const SHSurface reference = reference_shape(k, k.order);
+  int count = k.count.value_or(0);
+  if (k.hematocrit) {
+    if (!vessel) throw case_error(c, "cells.hematocrit", "a hematocrit needs a vessel");
+    const double cell_volume = enclosed_volume(reference.geometry(SHTransform(k.order, SphGrid::gauss(k.order))));
+    count = std::max(1, static_cast<int>(std::lround(*k.hematocrit * lumen_volume(*vessel) / cell_volume)));
+  }
+  PlacementSpec spec;
+  spec.box = to_eigen(c.domain.box);
+  spec.count = count;
+  spec.gap = std::max(c.time.collision_threshold, kMinimumPlacementGap);
+  spec.seed = static_cast<std::uint64_t>(k.seed);
+  try {
+    return placed_surfaces(reference, place_cells(reference, spec, vessel).cells);
+  } catch (const std::runtime_error& e) {
+    throw case_error(c, k.hematocrit ? "cells.hematocrit" : "cells.count", e.what());
+  }
 }
+
+}  // namespace
 
 RunSetup setup_run(const Case& c) {
   RunSetup r;
@@ -109,22 +95,27 @@ RunSetup setup_run(const Case& c) {
   } else {
     o.background = background(c.domain.background_flow);
   }
+  o.collision_threshold = c.time.collision_threshold;
+  std::optional<VesselMesh> vessel;
   if (c.vessel) {
-    r.wall = std::make_shared<const WallElements>(build_vessel(c));
+    vessel = build_vessel(c);
+    r.wall = std::make_shared<const WallElements>(*vessel);
     o.wall = r.wall;
     if (c.vessel->kind == VesselKind::tube) r.tube_radius = 0.5 * c.vessel->diameter;
   }
   if (c.cells) {
     const CaseCells& k = *c.cells;
     r.grids = CellGrids::make(k.order, k.dealias * k.order);
+    std::vector<SHSurface> placed;
     if (k.positions.empty()) {
-      throw case_error(c, "cells", "random placement (count or hematocrit without positions) is not available yet; "
-                                   "list the cells' positions");
+      placed = random_cells(c, vessel ? &*vessel : nullptr);
+    } else {
+      check_cell_layout(c);
+      placed = placed_cells(k, k.order);
     }
-    check_cell_layout(c);
     std::shared_ptr<const MembraneLaw> law = make_membrane_law(to_string(k.membrane.law), k.membrane.shear_modulus,
                                                                k.membrane.dilatation_modulus);
-    for (SHSurface& s : placed_cells(k, k.order)) {
+    for (SHSurface& s : placed) {
       Cell cell;
       cell.membrane = std::make_shared<const Membrane>(s, r.grids, MembraneParameters{law, k.membrane.bending_modulus});
       if (k.perturbation) perturb(s, *k.perturbation, *r.grids->n_grid);

@@ -5,14 +5,10 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/vessel_mesh.h"
 #include "io/case.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow::cli {
-
-// The vessel of the case (tube, constriction, bifurcation or a mesh file), checked.
-VesselMesh build_vessel(const Case& c);
 
 struct RunSetup {
   std::shared_ptr<const CellGrids> grids;

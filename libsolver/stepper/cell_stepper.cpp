@@ -32,6 +32,7 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
+    if (options_.collision_threshold > 0) wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
   } else if (options_.pressure_gradient) {
     throw std::invalid_argument("CellStepper: a prescribed pressure gradient needs a vessel wall to resist it");
   }
@@ -175,11 +176,25 @@ StepReport CellStepper::advance(const FlowSolution& s) {
     } else {
       x += options_.dt * rate.values();
     }
+    if (!x.allFinite()) {
+      throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
+    }
+  }
+  if (options_.collision_threshold > 0 && nc > 0) {
+    std::vector<SHSurface> shapes;
+    for (const Cell& c : cells_) shapes.push_back(c.shape);
+    const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
+    const CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold);
+    for (int c = 0; c < nc; ++c) cells_[c].shape = std::move(shapes[c]);
+    report.collision_pairs = k.cell_pairs;
+    report.wall_contacts = k.wall_contacts;
+  }
+  for (int c = 0; c < nc; ++c) {
     if (options_.volume_constraint) enforce_volume(c);
     const SurfaceGeometry g = cells_[c].shape.geometry(tn);
     const double dv = std::abs(enclosed_volume(g) / state_.volume0[c] - 1.0);
     const double da = std::abs(surface_area(g) / state_.area0[c] - 1.0);
-    if (!std::isfinite(dv) || !std::isfinite(da) || !x.allFinite()) {
+    if (!std::isfinite(dv) || !std::isfinite(da)) {
       throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
     }
     report.max_volume_error = std::max(report.max_volume_error, dv);

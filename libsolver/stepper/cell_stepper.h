@@ -4,8 +4,9 @@
 //              density; the wall force F^n from (12) with U^{n-1}; the cell velocity U^n
 //              from (10) with F^n (GMRES; lambda = 1 is explicit);
 //   advance(): X^{n+1} = X^n + dt U^n (forward Euler, eq. 11) or second-order
-//              Adams-Bashforth, then the volume constraint of section 10.2 (a normal
-//              correction of each cell to its initial volume).
+//              Adams-Bashforth, then the kinematic collision removal of section 11.2
+//              (threshold h_s, collision.h) and the volume constraint of section 10.2 (a
+//              normal correction of each cell to its initial volume).
 // solve() does not change the state, so output written between the two (or a frame of the
 // final state) leaves a run bit-for-bit the same; step() is solve() then advance().
 // Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8); free space (no walls) by
@@ -19,6 +20,7 @@
 #include "libsolver/membrane/membrane_force.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/stepper/cell_velocity.h"
+#include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/wall_coupling.h"
 
 namespace rbcflow {
@@ -36,6 +38,7 @@ struct CellStepperOptions {
   double gmres_tolerance = 1e-6;
   int gmres_max_iterations = 100;
   bool volume_constraint = false;
+  double collision_threshold = 0.0;       // h_s; 0: no collision removal
   QuadratureOptions quadrature;
   std::shared_ptr<const WallElements> wall;  // none: no vessel (periodic box only)
   WallSolveOptions wall_solve;
@@ -69,6 +72,8 @@ struct StepReport {
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();
   double max_volume_error = 0.0;  // relative to each cell's initial volume, after the step
   double max_area_error = 0.0;
+  int collision_pairs = 0;   // cell pairs and cell-wall contacts closer than h_s, removed
+  int wall_contacts = 0;
 };
 
 // Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}
@@ -113,6 +118,7 @@ class CellStepper {
   std::shared_ptr<const CellGrids> grids_;
   CellStepperOptions options_;
   std::unique_ptr<WallCoupling> wall_;
+  std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall
   StepperState state_;
 };
 
