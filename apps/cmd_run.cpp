@@ -203,6 +203,7 @@ int run_run(Args& args) {
     std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", case_file.c_str(), stepper.cells().size(),
                 stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", first, last,
                 c.output.dir.c_str());
+    std::fflush(stdout);
   }
 
   prepare_output_dir(c.output.dir);
@@ -225,9 +226,11 @@ int run_run(Args& args) {
       const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       output.diagnostics().write(diagnostics_row(stepper, r, setup, c, seconds));
       if (r.max_volume_error > kMaxVolumeError) {
-        throw std::runtime_error("a cell's volume changed by " + std::to_string(100 * r.max_volume_error) +
-                                 "% at step " + std::to_string(stepper.steps()) +
-                                 " (more than 1%: the run is unstable; try a smaller dt or more de-aliasing)");
+        char what[160];
+        std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * r.max_volume_error,
+                      stepper.steps());
+        throw std::runtime_error(std::string(what).append(" (more than 1%: the run is unstable; try a smaller dt or "
+                                                          "more de-aliasing)"));
       }
       if (checkpoint_every > 0 && stepper.steps() % checkpoint_every == 0) {
         last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # From a fresh Debian 12 clone to a first result: install the packages, build, and run the
-# default case (data/cases/default.toml), writing ParaView files under out/.
+# default case (data/cases/default.toml: three red cells in a tube), writing ParaView files,
+# diagnostics and a rendered picture under out/default/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,6 +10,6 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)"
 
 build/bin/rbcflow info
-mkdir -p out/quickstart
-build/bin/rbcflow shape rbc --order 16 -o out/quickstart/rbc.vtp
-echo "quickstart: wrote out/quickstart/rbc.vtp (open it in ParaView)"
+build/bin/rbcflow run data/cases/default.toml
+echo "quickstart: open out/default/rbcflow.xdmf (or rbcflow.pvd) in ParaView;" \
+     "the last frame is rendered in out/default/renders/, the diagnostics plotted in out/default/diagnostics.png"
