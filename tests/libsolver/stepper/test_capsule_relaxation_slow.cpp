@@ -1,0 +1,27 @@
+// The full relaxation test of section 9 (fig. 4; issue 7 validation 2, labelled slow): slow-mode
+// damping rates for l = 2..10, m = 2, lambda = 1 and 5, N = 12, dt = 1e-3, within 1% of the
+// secular equation (REFERENCES.md section 4). The paper reports < 0.2% at this resolution;
+// l = 10 is the largest degree N = 12 resolves (its Cartesian components reach degree 11).
+// Free space: the theory is for an unbounded fluid (the paper's box of side 20 adds ~(a/L)^3).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "capsule_relaxation.h"
+
+using namespace rbcflow;
+
+TEST(CapsuleRelaxationSlow, SlowModeRatesForDegrees2To10) {
+  for (double lambda : {1.0, 5.0}) {
+    for (int l = 2; l <= 10; ++l) {
+      const double th = test::slow_mode(l, lambda, 1.0, 3.5).w_slow;
+      // Long enough for the amplitude to fall by about e^-1, at least 20 steps.
+      const int steps = std::max(20, static_cast<int>(1.0 / (th * 1e-3)));
+      const double w = test::measured_rate(l, lambda, 12, 1e-3, steps);
+      std::printf("  l = %2d lambda = %.0f: measured %.5f theory %.5f  rel %.1e (%d steps)\n", l, lambda, w, th,
+                  std::abs(w / th - 1), steps);
+      EXPECT_NEAR(w / th, 1.0, 0.01) << "l = " << l << ", lambda = " << lambda;
+    }
+  }
+}
