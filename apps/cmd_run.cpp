@@ -1,35 +1,18 @@
-// rbcflow run: a case from its initial state (or a checkpoint) to time.end, writing the
-// output directory of CASE_FORMAT.md. The loop: solve the flow at X^n, write what is due at
-// step n (frame, cells.csv, render), advance, write the diagnostics row and any checkpoint.
-#include <unistd.h>
-
-#include <chrono>
-#include <cmath>
+// rbcflow run: parse the arguments, check the case and the output directory, run (run_loop.h).
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
-#include "io/case_derived.h"
 #include "io/output_dir.h"
-#include "io/plot.h"
-#include "io/render.h"
-#include "io/vtk_series.h"
-#include "io/xdmf_writer.h"
-#include "libsolver/wall/tube_flow.h"
-#include "run_output.h"
-#include "run_setup.h"
+#include "run_loop.h"
 
 namespace rbcflow::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-constexpr double kMaxVolumeError = 0.01;  // a run whose cells lose 1% of their volume has failed
 
 long parse_steps(const std::string& text) {
   std::size_t used = 0;
@@ -43,116 +26,6 @@ long parse_steps(const std::string& text) {
     throw UsageError("rbcflow run: --steps must be a positive integer, got '" + text + "'");
   }
   return v;
-}
-
-std::string duration(double seconds) {
-  char buf[32];
-  const long s = std::lround(seconds);
-  if (s >= 3600) {
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s % 3600) / 60);
-  } else if (s >= 60) {
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  } else {
-    std::snprintf(buf, sizeof buf, "%.1fs", seconds);
-  }
-  return buf;
-}
-
-// Step, simulated time, seconds per step and ETA: rewritten in place on a terminal, a plain
-// line every 5% of the run otherwise.
-class Progress {
- public:
-  Progress(bool quiet, long first, long last)
-      : quiet_(quiet), tty_(isatty(fileno(stdout)) != 0), first_(first), last_(last), start_(Clock::now()) {}
-  void update(long step, double time, double step_seconds) {
-    if (quiet_) return;
-    const long done = step - first_, total = last_ - first_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
-    const long every = std::max(1L, total / 20);
-    if (!tty_ && done % every != 0 && step != last_) return;
-    std::printf("%sstep %ld/%ld  t = %.5g  %.3g s/step  ETA %s%s", tty_ ? "\r" : "", step, last_, time, step_seconds,
-                duration(eta).c_str(), tty_ ? "   " : "\n");
-    if (tty_ && step == last_) std::printf("\n");
-    std::fflush(stdout);
-  }
-
- private:
-  bool quiet_, tty_;
-  long first_, last_;
-  Clock::time_point start_;
-};
-
-class RunOutput {
- public:
-  RunOutput(const Case& c, std::optional<long> resume)
-      : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume) {
-    if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
-    if (c.output.xdmf) xdmf_.emplace(dir_, resume);
-    if (c.output.vtk) vtk_.emplace(dir_, resume);
-    render_.field = c.output.render_field;
-    render_.view = c.output.render_view;
-    render_.width = c.output.render_size[0];
-    render_.height = c.output.render_size[1];
-    render_.axis = flow_axis(c);
-    if (!c.cells) render_.field = "none";
-  }
-
-  void frame(const CellStepper& stepper, const FlowSolution& s) {
-    const std::vector<Surface> surfaces = frame_surfaces(stepper, s);
-    if (xdmf_) xdmf_->write_frame(stepper.steps(), stepper.time(), surfaces);
-    if (vtk_) vtk_->write_frame(stepper.steps(), stepper.time(), surfaces);
-    if (cells_csv_) {
-      const bool shear = case_.domain.kind == DomainKind::free && case_.domain.background_flow.kind == FlowKind::shear;
-      cells_csv_->write(cell_rows(stepper, s, flow_axis(case_), shear));
-    }
-  }
-
-  void render(const CellStepper& stepper, const FlowSolution& s) {
-    char label[96];
-    std::snprintf(label, sizeof label, "step %ld   t = %.4g", stepper.steps(), stepper.time());
-    render_.label = label;
-    render_png(frame_surfaces(stepper, s), render_, render_path(dir_, stepper.steps()));
-  }
-
-  DiagnosticsCsv& diagnostics() { return diagnostics_; }
-
- private:
-  const Case& case_;
-  fs::path dir_;
-  DiagnosticsCsv diagnostics_;
-  std::optional<CellsCsv> cells_csv_;
-  std::optional<XdmfWriter> xdmf_;
-  std::optional<VtkSeriesWriter> vtk_;
-  RenderOptions render_;
-};
-
-DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, const RunSetup& setup,
-                               const Case& c, double seconds) {
-  DiagnosticsRow row;
-  row.step = stepper.steps();
-  row.time = stepper.time();
-  row.dt = stepper.dt();
-  row.mean_velocity = {r.mean_velocity.x(), r.mean_velocity.y(), r.mean_velocity.z()};
-  row.pressure_gradient = {r.pressure_gradient.x(), r.pressure_gradient.y(), r.pressure_gradient.z()};
-  if (setup.tube_radius) {
-    const int a = c.vessel->axis;
-    const double side = c.domain.box[(a + 1) % 3];
-    if (side == c.domain.box[(a + 2) % 3]) {  // (45) is for a square cross-section
-      row.effective_viscosity = tube_effective_viscosity(*setup.tube_radius, side, r.mean_velocity[a],
-                                                         r.pressure_gradient[a]);
-    }
-    row.tube_hematocrit = tube_hematocrit(c, static_cast<int>(stepper.cells().size()));
-  }
-  row.max_volume_error = r.max_volume_error;
-  row.max_area_error = r.max_area_error;
-  row.gmres_cells = r.gmres_iterations;
-  if (stepper.wall()) {
-    row.gmres_wall = r.gmres_wall;
-    row.wall_residual = r.wall_residual;
-  }
-  row.seconds = seconds;
-  return row;
 }
 
 void print_help() {
@@ -173,92 +46,24 @@ int run_run(Args& args) {
     return 0;
   }
   std::string out, restart, steps_text;
-  const bool quiet = args.flag("--quiet");
+  RunRequest request;
+  request.quiet = args.flag("--quiet");
   args.option("--out", out);
   args.option("--restart", restart);
   args.option("--steps", steps_text);
   const fs::path case_file = args.positional("case file (CASE.toml)");
   args.finish();
-  const long extra_steps = steps_text.empty() ? 0 : parse_steps(steps_text);  // 0: to time.end
+  request.steps = steps_text.empty() ? 0 : parse_steps(steps_text);  // 0: to time.end
 
-  Case c = read_case(case_file);
-  if (!out.empty()) c.output.dir = out;
-  check_output_dir(c, c.output.dir);
+  request.c = read_case(case_file);
+  if (!out.empty()) request.c.output.dir = out;
+  check_output_dir(request.c, request.c.output.dir);
   if (!restart.empty() && !fs::is_regular_file(restart)) {
     throw UsageError("rbcflow run: --restart " + restart + ": no such file");
   }
-  const bool render = c.output.render;
-  if (render) ensure_display();  // before any work: without a display the command restarts under Xvfb
-
-  RunSetup setup = setup_run(c);
-  CellStepper stepper(std::move(setup.cells), setup.grids, setup.options);
-  std::optional<long> resume;
-  if (!restart.empty()) {
-    read_checkpoint(stepper, c, restart);
-    resume = stepper.steps();
-  }
-  const long first = stepper.steps();
-  const long last = extra_steps > 0 ? first + extra_steps : setup.steps;
-  if (!quiet) {
-    std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", case_file.c_str(), stepper.cells().size(),
-                stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", first, last,
-                c.output.dir.c_str());
-    std::fflush(stdout);
-  }
-
-  prepare_output_dir(c.output.dir);
-  write_case_toml(c, c.output.dir / "case.toml");
-  RunOutput output(c, resume);
-  Progress progress(quiet, first, last);
-  std::optional<fs::path> last_checkpoint;
-  if (!restart.empty()) last_checkpoint = restart;
-  const int every = c.output.every, render_every = c.output.render_every, checkpoint_every = c.output.checkpoint_every;
-
-  try {
-    while (stepper.steps() < last) {
-      const long n = stepper.steps();
-      const auto t0 = Clock::now();
-      const FlowSolution s = stepper.solve();
-      const bool resumed_here = resume && n == *resume;  // the run before the restart wrote step n
-      if (n % every == 0 && !resumed_here) output.frame(stepper, s);
-      if (render && render_every > 0 && n % render_every == 0 && !resumed_here) output.render(stepper, s);
-      const StepReport r = stepper.advance(s);
-      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      output.diagnostics().write(diagnostics_row(stepper, r, setup, c, seconds));
-      if (r.max_volume_error > kMaxVolumeError) {
-        char what[160];
-        std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * r.max_volume_error,
-                      stepper.steps());
-        throw std::runtime_error(std::string(what).append(" (more than 1%: the run is unstable; try a smaller dt or "
-                                                          "more de-aliasing)"));
-      }
-      if (checkpoint_every > 0 && stepper.steps() % checkpoint_every == 0) {
-        last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());
-        write_checkpoint(stepper, c, *last_checkpoint);
-      }
-      progress.update(stepper.steps(), stepper.time(), seconds);
-    }
-    // The final state: its frame, render and checkpoint when not already written.
-    const long n = stepper.steps();
-    const bool frame_due = n % every != 0 || n == first;
-    const bool render_due = render && (render_every == 0 || n % render_every != 0 || n == first);
-    if (frame_due || render_due) {
-      const FlowSolution s = stepper.solve();
-      if (frame_due) output.frame(stepper, s);
-      if (render_due) output.render(stepper, s);
-    }
-    if (checkpoint_every > 0 && n % checkpoint_every != 0) {
-      last_checkpoint = checkpoint_path(c.output.dir, n);
-      write_checkpoint(stepper, c, *last_checkpoint);
-    }
-    if (render) plot_diagnostics(c.output.dir / "diagnostics.csv", c.output.dir / "diagnostics.png");
-  } catch (const std::exception& e) {
-    std::string message = e.what();
-    message.append(last_checkpoint ? "; the last good checkpoint is " + last_checkpoint->string()
-                                   : "; no checkpoint was written");
-    throw std::runtime_error(message);
-  }
-  if (!quiet) std::printf("done: %ld steps, t = %.5g, output in %s\n", last - first, stepper.time(), c.output.dir.c_str());
+  request.restart = restart;
+  if (request.c.output.render) ensure_display();  // before any work: without a display the command restarts under Xvfb
+  run_case(request);
   return 0;
 }
 
