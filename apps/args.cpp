@@ -33,6 +33,14 @@ std::string Args::positional(const std::string& what) {
   return v;
 }
 
+std::string Args::next_positional() {
+  auto it = std::find_if(args_.begin(), args_.end(), [](const std::string& a) { return !a.empty() && a[0] != '-'; });
+  if (it == args_.end()) return {};
+  std::string v = *it;
+  args_.erase(it);
+  return v;
+}
+
 bool Args::help_requested() const {
   return std::find_if(args_.begin(), args_.end(), [](const std::string& a) {
            return a == "--help" || a == "-h";

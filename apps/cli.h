@@ -19,6 +19,7 @@ class Args {
   bool flag(const std::string& name);                    // --name
   bool option(const std::string& name, std::string& v);  // --name VALUE (or -o VALUE)
   std::string positional(const std::string& what);       // next non-option, required
+  std::string next_positional();                         // next non-option, or empty
   bool help_requested() const;
   void finish() const;  // anything left over is an error
 
@@ -33,5 +34,6 @@ int run_check(Args& args);
 int run_render(Args& args);
 int run_run(Args& args);
 int run_mesh(Args& args);
+int run_study(Args& args);
 
 }  // namespace rbcflow::cli

@@ -15,6 +15,7 @@ void print_usage() {
       "usage: rbcflow COMMAND [ARGS]\n"
       "commands:\n"
       "  run CASE.toml        run a case (ParaView output, diagnostics, checkpoints)\n"
+      "  study CASE.toml... -o DIR  run a tube study; mu_eff against D with the Pries law\n"
       "  check CASE.toml      validate a case; print derived parameters\n"
       "  mesh CASE.toml -o W.msh  mesh the vessel; write W.msh and W.vtp\n"
       "  render OUTDIR -o F.png  render a saved frame (or --plot the diagnostics)\n"
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     if (command == "check") return run_check(args);
     if (command == "mesh") return run_mesh(args);
     if (command == "render") return run_render(args);
+    if (command == "study") return run_study(args);
     std::fprintf(stderr, "rbcflow: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

@@ -1,0 +1,165 @@
+// rbcflow study: the tube study of paper section 11.2 (fig. 12, 13) in one command. Runs each
+// case (a straight tube with cells), averages its effective viscosity over the statistically
+// steady part, and writes DIR/study.csv, DIR/study.png (mu_eff against D with the Pries law
+// at the runs' tube hematocrit and its +-10% band) and end and side renders of every tube.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "display.h"
+#include "io/case.h"
+#include "io/csv.h"
+#include "io/output_dir.h"
+#include "io/render.h"
+#include "io/study_plot.h"
+#include "io/vtk_series.h"
+#include "libsolver/wall/pries_law.h"
+#include "run_loop.h"
+#include "study_analysis.h"
+
+namespace rbcflow::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMicrometresPerRadius = 2.82;  // a, the equivalent cell radius (paper section 6)
+constexpr double kBand = 0.10;                  // the Pries law's band in the plot
+
+const std::vector<std::string>& study_columns() {
+  static const std::vector<std::string> c = {
+      "case", "diameter", "diameter_um", "tube_hematocrit", "discharge_hematocrit", "order", "cells", "steps",
+      "time", "steady_from", "rows_averaged", "effective_viscosity", "effective_viscosity_stderr", "pries",
+      "pressure_gradient_fluctuation"};
+  return c;
+}
+
+double parse_number(const std::string& text, const std::string& what, double lo, double hi) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || !(v >= lo && v <= hi)) {
+    throw UsageError("rbcflow study: " + what + " must be a number in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "], got '" + text + "'");
+  }
+  return v;
+}
+
+void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, const std::string& stem) {
+  const VtkFrame frame = read_vtk_frame(run_dir);
+  RenderOptions o;
+  o.field = c.output.render_field;
+  o.axis = c.vessel->axis;
+  o.width = c.output.render_size[0];
+  o.height = c.output.render_size[1];
+  char label[128];
+  std::snprintf(label, sizeof label, "D = %.2f um   step %ld   t = %.4g", c.vessel->diameter * kMicrometresPerRadius,
+                frame.step, frame.time);
+  o.label = label;
+  for (const RenderView view : {RenderView::end, RenderView::side}) {
+    o.view = view;
+    render_png(frame.surfaces, o, out / "renders" / (stem + "_" + to_string(view) + ".png"));
+  }
+}
+
+void print_help() {
+  std::printf(
+      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--quiet]\n"
+      "  Runs every case (straight tubes with cells, e.g. data/cases/fahraeus/quick/*.toml) into\n"
+      "  DIR/<case name>/, averages the effective viscosity (45)-(46) over time >= F x the run's\n"
+      "  end (default F = 0.5) with a batch-means standard error, and writes DIR/study.csv,\n"
+      "  DIR/study.png (mu_eff against D in um, with the Pries law at the runs' tube hematocrit,\n"
+      "  converted to the discharge hematocrit, and its +-10%% band) and DIR/renders/<case>_end.png\n"
+      "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n");
+}
+
+}  // namespace
+
+int run_study(Args& args) {
+  if (args.help_requested()) {
+    print_help();
+    return 0;
+  }
+  std::string out, fraction_text, steps_text;
+  if (!args.option("-o", out)) throw UsageError("rbcflow study: missing -o DIR");
+  const bool quiet = args.flag("--quiet");
+  args.option("--steady-fraction", fraction_text);
+  args.option("--steps", steps_text);
+  std::vector<fs::path> case_files{args.positional("case file (CASE.toml)")};
+  for (std::string more; !(more = args.next_positional()).empty();) case_files.emplace_back(more);
+  args.finish();
+  const double fraction = fraction_text.empty() ? 0.5 : parse_number(fraction_text, "--steady-fraction", 0.0, 1.0);
+  const long steps = steps_text.empty() ? 0 : static_cast<long>(parse_number(steps_text, "--steps", 1, 1e9));
+
+  // Every case is read and checked before the first (long) run.
+  std::vector<Case> cases;
+  for (const fs::path& f : case_files) {
+    Case c = read_case(f);
+    if (!c.vessel || c.vessel->kind != VesselKind::tube) throw case_error(c, "vessel", "a study needs a straight tube");
+    if (!c.cells) throw case_error(c, "cells", "a study needs cells");
+    c.output.dir = fs::path(out) / f.stem();
+    check_output_dir(c, c.output.dir);
+    cases.push_back(std::move(c));
+  }
+  ensure_display();  // renders and the plot
+  fs::create_directories(fs::path(out) / "renders");
+
+  CsvWriter csv(fs::path(out) / "study.csv", study_columns());
+  StudyPlot plot;
+  double hematocrit_sum = 0;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    const std::string stem = case_files[k].stem().string();
+    if (!quiet) std::printf("== %s (%zu of %zu)\n", stem.c_str(), k + 1, cases.size());
+    std::fflush(stdout);
+    run_case(RunRequest{c, {}, steps, quiet});
+    const SteadyAverage a = steady_average(c.output.dir / "diagnostics.csv", c.vessel->axis, fraction);
+    const CsvTable diagnostics = read_csv(c.output.dir / "diagnostics.csv");
+    const double ht = std::stod(diagnostics.rows.front()[diagnostics.column("tube_hematocrit")]);
+    const double d_um = c.vessel->diameter * kMicrometresPerRadius;
+    const double hd = discharge_hematocrit(d_um, ht);
+    const double pries = pries_relative_viscosity(d_um, hd);
+    const CsvTable cells = read_csv(c.output.dir / "cells.csv");
+    const long n_cells = std::count_if(cells.rows.begin(), cells.rows.end(),
+                                       [&](const auto& r) { return r[0] == cells.rows.front()[0]; });
+    csv.write({stem, csv_number(c.vessel->diameter), csv_number(d_um), csv_number(ht), csv_number(hd),
+               std::to_string(c.cells->order), std::to_string(n_cells), std::to_string(diagnostics.rows.size()),
+               csv_number(a.to_time), csv_number(a.from_time), std::to_string(a.rows), csv_number(a.mean),
+               csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation)});
+    if (c.output.vtk) render_tube(c.output.dir, c, out, stem);
+    plot.diameter.push_back(d_um);
+    plot.value.push_back(a.mean);
+    plot.error.push_back(a.standard_error);
+    hematocrit_sum += ht;
+    std::printf("%s: D = %.2f um, H_T = %.3f (H_D = %.3f): mu_eff = %.4f +- %.4f over t in [%.4g, %.4g] (%ld rows); "
+                "Pries %.4f; <grad p> fluctuation %.2f%%\n",
+                stem.c_str(), d_um, ht, hd, a.mean, a.standard_error, a.from_time, a.to_time, a.rows, pries,
+                100 * a.pressure_gradient_fluctuation);
+  }
+  const double ht = hematocrit_sum / static_cast<double>(cases.size());
+  const auto [lo, hi] = std::minmax_element(plot.diameter.begin(), plot.diameter.end());
+  const double d0 = std::max(1.0, *lo - 1.0), d1 = *hi + 1.0;
+  for (int i = 0; i <= 200; ++i) {
+    const double d = d0 + (d1 - d0) * i / 200.0;
+    const double mu = pries_relative_viscosity(d, discharge_hematocrit(d, ht));
+    plot.reference_diameter.push_back(d);
+    plot.reference.push_back(mu);
+    plot.reference_low.push_back((1 - kBand) * mu);
+    plot.reference_high.push_back((1 + kBand) * mu);
+  }
+  char title[96];
+  std::snprintf(title, sizeof title, "Effective viscosity at tube hematocrit %.2f", ht);
+  plot.title = title;
+  plot.reference_name = "Pries et al. 1992";
+  plot_study(plot, fs::path(out) / "study.png");
+  std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());
+  return 0;
+}
+
+}  // namespace rbcflow::cli

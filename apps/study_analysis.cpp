@@ -1,0 +1,63 @@
+#include "study_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/csv.h"
+
+namespace rbcflow::cli {
+
+namespace {
+
+constexpr int kMaxBatches = 10;
+
+double mean_of(const std::vector<double>& v, std::size_t begin, std::size_t end) {
+  double s = 0;
+  for (std::size_t i = begin; i < end; ++i) s += v[i];
+  return s / static_cast<double>(end - begin);
+}
+
+}  // namespace
+
+SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double steady_fraction) {
+  const CsvTable table = read_csv(csv);
+  const std::size_t time = table.column("time"), mu = table.column("effective_viscosity");
+  const std::size_t dp = table.column(std::string("pressure_gradient_") + "xyz"[axis]);
+  if (table.rows.empty()) throw std::runtime_error(csv.string() + ": no rows");
+  const double last = std::strtod(table.rows.back()[time].c_str(), nullptr);
+  SteadyAverage a;
+  a.from_time = steady_fraction * last;
+  a.to_time = last;
+  std::vector<double> viscosity, gradient;
+  for (const auto& row : table.rows) {
+    if (std::strtod(row[time].c_str(), nullptr) < a.from_time) continue;
+    if (row[mu].empty()) throw std::runtime_error(csv.string() + ": no effective viscosity (a straight tube in a square box is needed)");
+    viscosity.push_back(std::strtod(row[mu].c_str(), nullptr));
+    gradient.push_back(std::strtod(row[dp].c_str(), nullptr));
+  }
+  if (viscosity.empty()) throw std::runtime_error(csv.string() + ": no rows in the steady part");
+  const std::size_t n = viscosity.size();
+  a.rows = static_cast<long>(n);
+  a.mean = mean_of(viscosity, 0, n);
+  // Batch means: consecutive rows are correlated; batches of n / B rows are nearly not.
+  const int batches = static_cast<int>(std::min<std::size_t>(kMaxBatches, n / 2));
+  if (n >= 4 && batches >= 2) {
+    const std::size_t size = n / batches;
+    std::vector<double> means;
+    for (int b = 0; b < batches; ++b) means.push_back(mean_of(viscosity, b * size, (b + 1) * size));
+    const double m = mean_of(means, 0, means.size());
+    double var = 0;
+    for (double x : means) var += (x - m) * (x - m);
+    a.standard_error = std::sqrt(var / (batches - 1) / batches);
+  }
+  const double g = mean_of(gradient, 0, n);
+  const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
+  a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;
+  return a;
+}
+
+}  // namespace rbcflow::cli

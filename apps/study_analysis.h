@@ -1,0 +1,22 @@
+#pragma once
+// The statistics of a tube study (paper section 11.2): from a run's diagnostics.csv, the
+// effective viscosity (45)-(46) averaged over the statistically steady part of the run, its
+// standard error by batch means, and the fluctuation of the mean pressure gradient.
+#include <filesystem>
+
+namespace rbcflow::cli {
+
+struct SteadyAverage {
+  long rows = 0;             // diagnostics rows averaged
+  double from_time = 0;      // start of the steady part
+  double to_time = 0;
+  double mean = 0;           // effective viscosity
+  double standard_error = 0; // batch means (up to 10 batches; 0 with fewer than 4 rows)
+  double pressure_gradient_fluctuation = 0;  // (max - min) / |mean| of <dp/ds> along the axis
+};
+
+// Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file
+// when it has no effective viscosity (no straight tube) or no rows in the steady part.
+SteadyAverage steady_average(const std::filesystem::path& diagnostics_csv, int axis, double steady_fraction);
+
+}  // namespace rbcflow::cli

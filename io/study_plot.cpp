@@ -1,0 +1,79 @@
+#include "io/study_plot.h"
+
+#include <vtkAxis.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPlot.h>
+#include <vtkPlotPoints.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+
+#include <stdexcept>
+
+#include "io/render.h"
+#include "io/vtk_internal.h"
+
+namespace rbcflow {
+
+namespace {
+
+vtkPlot* add(vtkChartXY* chart, int type, const std::string& name, const std::vector<double>& x,
+             const std::vector<double>& y, const unsigned char rgb[3], float width) {
+  vtkNew<vtkTable> table;
+  vtkNew<vtkDoubleArray> xs, ys;
+  xs->SetName("D");
+  ys->SetName(name.c_str());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    xs->InsertNextValue(x[i]);
+    ys->InsertNextValue(y[i]);
+  }
+  table->AddColumn(xs);
+  table->AddColumn(ys);
+  vtkPlot* p = chart->AddPlot(type);
+  p->SetInputData(table, 0, 1);
+  p->SetColor(rgb[0], rgb[1], rgb[2], 255);
+  p->SetWidth(width);
+  return p;
+}
+
+}  // namespace
+
+void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width, int height) {
+  if (!display_available()) {
+    throw std::runtime_error("cannot plot " + png.string() + ": no X display (see docs/rendering.md)");
+  }
+  vtkNew<vtkContextView> view;
+  view->GetRenderer()->SetBackground(1, 1, 1);
+  view->GetRenderWindow()->SetOffScreenRendering(1);
+  view->GetRenderWindow()->SetSize(width, height);
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetTitle(s.title);
+  chart->GetTitleProperties()->SetFontSize(16);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("tube diameter D (um)");
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle("effective viscosity mu_eff / mu");
+  chart->SetShowLegend(true);
+  static const unsigned char grey[3] = {150, 150, 150}, black[3] = {40, 40, 40}, blue[3] = {31, 119, 180};
+  if (!s.reference_diameter.empty()) {
+    add(chart, vtkChart::LINE, s.reference_name, s.reference_diameter, s.reference, black, 2.0f);
+    add(chart, vtkChart::LINE, s.reference_name + " -10%", s.reference_diameter, s.reference_low, grey, 1.0f);
+    add(chart, vtkChart::LINE, s.reference_name + " +10%", s.reference_diameter, s.reference_high, grey, 1.0f);
+  }
+  // Error bars as short vertical lines, then the points.
+  for (std::size_t i = 0; i < s.diameter.size(); ++i) {
+    if (!(s.error[i] > 0)) continue;
+    vtkPlot* bar = add(chart, vtkChart::LINE, "", {s.diameter[i], s.diameter[i]},
+                       {s.value[i] - s.error[i], s.value[i] + s.error[i]}, blue, 2.0f);
+    bar->SetLegendVisibility(false);
+  }
+  vtkPlot* points = add(chart, vtkChart::POINTS, "simulation", s.diameter, s.value, blue, 3.0f);
+  if (auto* p = vtkPlotPoints::SafeDownCast(points)) p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+  write_png(view->GetRenderWindow(), png);
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,20 @@
+#pragma once
+// The PNG of a tube study (paper fig. 13): the measured effective viscosity against the tube
+// diameter, with error bars, over a reference curve and its band (the Pries law +-10%).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rbcflow {
+
+struct StudyPlot {
+  std::string title;
+  std::vector<double> diameter, value, error;  // the measured points (error: +- one bar)
+  std::vector<double> reference_diameter, reference, reference_low, reference_high;
+  std::string reference_name = "reference";
+};
+
+// Writes `png` atomically; throws std::runtime_error when there is no display or it cannot.
+void plot_study(const StudyPlot& plot, const std::filesystem::path& png, int width = 1000, int height = 700);
+
+}  // namespace rbcflow
