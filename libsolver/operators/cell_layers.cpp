@@ -4,6 +4,7 @@
 
 #include "libsolver/spme/double_layer_linear.h"
 #include "near_targets.h"
+#include "scoped_timer.h"
 
 namespace rbcflow {
 
@@ -11,6 +12,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer)
     : grids_(std::move(grids)), domain_(domain) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
+  ScopedTimer geometry_timer(timings_.geometry);
   const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
   cells_.resize(nc);
 #pragma omp parallel for schedule(dynamic)
@@ -35,9 +37,11 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       xi_double = cd.parameters.xi;
     }
   }
+  geometry_timer.stop();
   self_single_.resize(nc);
   self_double_.resize(nc);
   near_.resize(nc);
+  ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
     const auto targets = cells_[c]->node_targets();
@@ -45,6 +49,11 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     if (with_double_layer) {
       self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
     }
+  }
+  self_timer.stop();
+  ScopedTimer near_timer(timings_.near);
+#pragma omp parallel for schedule(dynamic)
+  for (int c = 0; c < nc; ++c) {
     // Nodes of other cells closer than the near distance (nearest periodic image).
     NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
     near_[c].rows = std::move(near.rows);

@@ -19,6 +19,13 @@
 
 namespace rbcflow {
 
+// Wall-clock seconds of the constructor's stages (StepTimings).
+struct CellLayersTimings {
+  double geometry = 0.0;  // quadrature geometry of every cell and the Ewald plans
+  double self = 0.0;      // singular corrections
+  double near = 0.0;      // near-target search and nearly-singular corrections
+};
+
 struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
@@ -39,6 +46,7 @@ class CellLayers {
   const LayerDomain& domain() const { return domain_; }
   bool has_double_layer() const { return self_double_[0] != nullptr; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs
+  const CellLayersTimings& build_timings() const { return timings_; }
 
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
@@ -58,6 +66,7 @@ class CellLayers {
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
+  CellLayersTimings timings_;
 };
 
 }  // namespace rbcflow

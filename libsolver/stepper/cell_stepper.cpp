@@ -52,6 +52,8 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
   const double lambda = options_.viscosity_ratio;
   const long step = state_.steps + 1;
   FlowSolution s;
+  StepTimings& timing = s.timings;
+  ScopedTimer total_timer(timing.total);
   s.mean_velocity = options_.mean_velocity;
 
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
@@ -60,13 +62,18 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
     std::vector<SHCoeffs> shapes(nc);
     s.membrane.resize(nc);
     s.traction.resize(nc * np, 3);
+    ScopedTimer membrane_timer(timing.membrane);
 #pragma omp parallel for schedule(dynamic)
     for (int c = 0; c < nc; ++c) {
       shapes[c] = cells_[c].shape.coeffs();
       s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
       s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
     }
+    membrane_timer.stop();
     layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0);
+    timing.cell_geometry = layers->build_timings().geometry;
+    timing.self_corrections = layers->build_timings().self;
+    timing.near_corrections = layers->build_timings().near;
     for (int c = 0; c < nc; ++c) {
       if (cells_[c].body_force.isZero()) continue;
       const double area = layers->cell(c).nodes().weight.sum();
@@ -77,16 +84,19 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
   // (12): the wall force for the cells' traction and the velocity U (previous step's).
   std::unique_ptr<CellLayersAtPoints> at_wall;
   if (wall_ && nc > 0) {
+    ScopedTimer timer(timing.at_wall_build);
     at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes());
     s.near_wall_points = at_wall->near_points();
   }
   auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
     PointField v = PointField::Zero(wall_->nodes().rows(), 3);
     if (at_wall) {
+      ScopedTimer timer(timing.at_wall_products);
       v -= at_wall->single_layer(s.traction) / (8 * kPi);
       if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer(U);
     }
     WallSolution w;
+    ScopedTimer solve_timer(timing.wall_solve);
     if (options_.pressure_gradient) {
       w = wall_->solve(v, {});
       s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient, w.force);
@@ -94,22 +104,34 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
     } else {
       w = wall_->solve(v.rowwise() + s.mean_velocity.transpose(), guess);
     }
+    solve_timer.stop();
     s.wall_force = w.force;
     s.gmres_wall += w.gmres.iterations;
     s.wall_residual = w.gmres.relative_residual;
     s.pressure_gradient = wall_->pressure_gradient(w.force);
   };
-  // (10): the cell velocity for the wall force just found.
+  // (10): the cell velocity for the wall force just found. The wall operator at the cell nodes
+  // is built once for all the start sweeps.
+  std::optional<WallOperator> wall_at_cells;
   auto solve_cells = [&](const Eigen::MatrixXd& guess) {
     Eigen::MatrixXd background(nc * np, 3);
     if (options_.domain.box) {
       background.rowwise() = s.mean_velocity.transpose();
-      if (wall_) background += wall_->velocity_at(layers->nodes().x, s.wall_force);
+      if (wall_) {
+        if (!wall_at_cells) {
+          ScopedTimer timer(timing.wall_at_cells_build);
+          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x));
+        }
+        ScopedTimer timer(timing.wall_at_cells);
+        background += WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
+      }
     } else {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
     }
+    ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v = solve_cell_velocity(*layers, s.traction, lambda, background, options_.gmres_tolerance,
                                                 options_.gmres_max_iterations, guess);
+    products_timer.stop();
     if (!v.gmres.converged) {
       throw std::runtime_error("GMRES for the cell velocity did not converge" + at_step(step) + ": relative residual " +
                                std::to_string(v.gmres.relative_residual) + " after " +
@@ -139,6 +161,7 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
     if (what.find(" at step ") != std::string::npos) throw;
     throw std::runtime_error(what + at_step(step));
   }
+  total_timer.stop();
   return s;
 }
 

@@ -21,6 +21,7 @@
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/step_timings.h"
 #include "libsolver/stepper/wall_coupling.h"
 
 namespace rbcflow {
@@ -61,6 +62,7 @@ struct FlowSolution {
   int gmres_cells = 0, gmres_wall = 0;
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
+  StepTimings timings;        // where solve() spent its time
 };
 
 struct StepReport {

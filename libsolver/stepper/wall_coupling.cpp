@@ -48,8 +48,16 @@ PointField WallCoupling::force_for_mean_velocity(const Eigen::Vector3d& mean_vel
 }
 
 PointField WallCoupling::velocity_at(const PointField& points, const PointField& force) const {
-  WallOperator op(elements_, points, box_, ewald_tolerance_);
-  return (-1.0 / (8.0 * std::numbers::pi)) * op.apply(force);
+  WallOperator op = operator_at(points);
+  return velocity_at(op, force);
+}
+
+WallOperator WallCoupling::operator_at(const PointField& points) const {
+  return WallOperator(elements_, points, box_, ewald_tolerance_);
+}
+
+PointField WallCoupling::velocity_at(WallOperator& at_points, const PointField& force) {
+  return (-1.0 / (8.0 * std::numbers::pi)) * at_points.apply(force);
 }
 
 }  // namespace rbcflow

@@ -34,6 +34,10 @@ class WallCoupling {
   PointField force_for_mean_velocity(const Eigen::Vector3d& mean_velocity);
   // -(1/(8 pi mu)) N_W F at arbitrary points (the cell nodes), with the near-field correction.
   PointField velocity_at(const PointField& points, const PointField& force) const;
+  // The same in two halves, for several forces at the same points (one step's cell nodes):
+  // the operator with `points` as targets, then the velocity for a force.
+  WallOperator operator_at(const PointField& points) const;
+  static PointField velocity_at(WallOperator& at_points, const PointField& force);
 
  private:
   const std::array<PointField, 3>& unit_forces();

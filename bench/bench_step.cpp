@@ -1,0 +1,94 @@
+// Seconds per time step of the coupled solver with the split of issue 9 (membrane force,
+// corrections build, GMRES products, wall solve), for the cases of bench/step_cases.h:
+//   build/bin/bench_step minicase [--steps 5]
+//   OMP_NUM_THREADS=1 build/bin/bench_step tube27 --steps 2
+// One line per step (step 1 of a lambda != 1 case with walls includes the start sweeps), then
+// the minimum over the later steps of each column (wall-clock seconds; cpu: process CPU time,
+// all threads). Set-up (mesh, wall operator and its LU,
+// placement) is timed apart.
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "step_cases.h"
+
+using namespace rbcflow;
+
+namespace {
+
+struct Column {
+  const char* name;
+  double StepTimings::*field;
+};
+
+constexpr Column kColumns[] = {
+    {"membrane", &StepTimings::membrane},
+    {"geometry", &StepTimings::cell_geometry},
+    {"self", &StepTimings::self_corrections},
+    {"near", &StepTimings::near_corrections},
+    {"at_wall", &StepTimings::at_wall_build},
+    {"wall_op", &StepTimings::wall_at_cells_build},
+    {"cell_prod", &StepTimings::cell_products},
+    {"wall_prod", &StepTimings::at_wall_products},
+    {"wall_solve", &StepTimings::wall_solve},
+    {"wall_vel", &StepTimings::wall_at_cells},
+};
+
+void print_row(const char* label, double step, double cpu, const StepTimings& t, int gmres_cells, int gmres_wall) {
+  std::printf("%-6s %8.3f %8.3f", label, step, cpu);
+  for (const Column& c : kColumns) std::printf(" %10.3f", t.*c.field);
+  std::printf(" %6d %6d\n", gmres_cells, gmres_wall);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_step single|minicase|tube27 [--steps K]\n");
+    return 2;
+  }
+  const std::string name = argv[1];
+  int steps = 5;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    if (std::string(argv[i]) == "--steps") steps = std::max(1, std::atoi(argv[i + 1]));
+  }
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto stepper = bench::make_step_case(name);
+    const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("case %s: %zu cells, %d threads, set-up %.2f s\n", name.c_str(), stepper->cells().size(),
+                omp_get_max_threads(), setup);
+    std::printf("%-6s %8s %8s", "step", "total", "cpu");
+    for (const Column& c : kColumns) std::printf(" %10s", c.name);
+    std::printf(" %6s %6s\n", "it_c", "it_w");
+    double best_step = 1e300, best_cpu = 1e300;
+    StepTimings best;
+    for (const Column& c : kColumns) best.*c.field = 1e300;
+    for (int k = 1; k <= steps; ++k) {
+      const auto s0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      const FlowSolution s = stepper->solve();
+      stepper->advance(s);
+      const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
+      const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+      print_row(std::to_string(k).c_str(), step, cpu, s.timings, s.gmres_cells, s.gmres_wall);
+      std::fflush(stdout);
+      if (k == 1 && steps > 1) continue;
+      best_step = std::min(best_step, step);
+      best_cpu = std::min(best_cpu, cpu);
+      for (const Column& c : kColumns) best.*c.field = std::min(best.*c.field, s.timings.*c.field);
+    }
+    print_row("min", best_step, best_cpu, best, 0, 0);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_step: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

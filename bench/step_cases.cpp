@@ -1,0 +1,101 @@
+#include "step_cases.h"
+
+#include <Eigen/Geometry>
+#include <stdexcept>
+
+#include "geometry/cell_placement.h"
+#include "geometry/reference_shapes.h"
+#include "geometry/vessel.h"
+#include "libsolver/membrane/membrane_law.h"
+
+namespace rbcflow::bench {
+
+namespace {
+
+constexpr double kDt = 1e-3;
+
+struct Spec {
+  int order = 12, dealias_order = 24;
+  double lambda = 1.0;
+  std::vector<SHSurface> cells;
+};
+
+std::unique_ptr<CellStepper> make(const Spec& spec, CellStepperOptions o) {
+  auto grids = CellGrids::make(spec.order, spec.dealias_order);
+  const std::shared_ptr<const MembraneLaw> law = make_membrane_law("skalak", 12.4, 200.0);
+  std::vector<Cell> cells;
+  for (const SHSurface& s : spec.cells) {
+    Cell c;
+    c.membrane = std::make_shared<const Membrane>(s, grids, MembraneParameters{law, 0.0669});
+    c.shape = s;
+    cells.push_back(std::move(c));
+  }
+  o.dt = kDt;
+  o.viscosity_ratio = spec.lambda;
+  return std::make_unique<CellStepper>(std::move(cells), grids, std::move(o));
+}
+
+SHSurface placed(const SHSurface& reference, const Eigen::Vector3d& axis, const Eigen::Vector3d& position) {
+  SHSurface s = reference;
+  s.rotate(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis.normalized()).toRotationMatrix());
+  s.translate(position);
+  return s;
+}
+
+std::unique_ptr<CellStepper> single() {
+  Spec spec{16, 48, 5.0, {}};
+  spec.cells.push_back(placed(make_biconcave(16), Eigen::Vector3d(1, 0, 1), Eigen::Vector3d::Zero()));
+  CellStepperOptions o;
+  o.background = [](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.z(), 0, 0); };
+  return make(spec, std::move(o));
+}
+
+std::unique_ptr<CellStepper> minicase() {
+  const Eigen::Vector3d box(10.5, 10.5, 8.0);
+  TubeSpec tube_spec{10.0, 2, box, 0.5};
+  Spec spec{12, 36, 1.0, {}};
+  const SHSurface rbc = make_biconcave(12);
+  spec.cells.push_back(placed(rbc, Eigen::Vector3d(0.2, 0, 1), Eigen::Vector3d(4.5, 5.25, 2.0)));
+  spec.cells.push_back(placed(rbc, Eigen::Vector3d(0, 0.3, 1), Eigen::Vector3d(6.2, 5.0, 6.0)));
+  CellStepperOptions o;
+  o.domain.box = PeriodicBox(box);
+  o.domain.ewald_tolerance = 1e-6;
+  o.mean_velocity = Eigen::Vector3d(0, 0, 1);
+  o.wall = std::make_shared<const WallElements>(tube(tube_spec));
+  o.wall_solve.tolerance = 1e-6;
+  return make(spec, std::move(o));
+}
+
+std::unique_ptr<CellStepper> tube27() {
+  const Eigen::Vector3d box(6.6, 6.6, 13.33);
+  const VesselMesh vessel = tube(TubeSpec{6.0, 2, box, 0.25});
+  Spec spec{16, 48, 5.0, {}};
+  PlacementSpec placement;
+  placement.box = box;
+  placement.count = 27;
+  placement.gap = 0.05;  // max(h_s, 0.05), as rbcflow run places cells
+  placement.seed = 1;
+  const SHSurface rbc = make_biconcave(16);
+  spec.cells = placed_surfaces(rbc, place_cells(rbc, placement, &vessel).cells);
+  CellStepperOptions o;
+  o.domain.box = PeriodicBox(box);
+  o.domain.ewald_tolerance = 1e-6;
+  o.mean_velocity = Eigen::Vector3d(0, 0, 5);
+  o.gmres_tolerance = 1e-6;
+  o.wall = std::make_shared<const WallElements>(vessel);
+  o.wall_solve.tolerance = 1e-6;
+  o.collision_threshold = 0.02;
+  o.volume_constraint = true;
+  return make(spec, std::move(o));
+}
+
+}  // namespace
+
+std::unique_ptr<CellStepper> make_step_case(const std::string& name) {
+  if (name == "single") return single();
+  if (name == "minicase") return minicase();
+  if (name == "tube27") return tube27();
+  throw std::invalid_argument("unknown case '" + name + "' (single, minicase, tube27)");
+}
+
+}  // namespace rbcflow::bench

@@ -1,0 +1,22 @@
+#pragma once
+// The cases of issue 9's step benchmark, built directly (no case file, no output):
+//   single:   one red cell in free-space shear flow (rate 1), N = 16, M = 48, lambda = 5;
+//   minicase: 2 red cells, N = 12, M = 36, lambda = 1, in a D = 10 tube of ~2,400 triangles,
+//             box 10.5 x 10.5 x 8, <u> = e_z, Ewald tolerance 1e-6, wall solve to 1e-6;
+//   tube27:   data/cases/tube_27_cells.toml: 27 red cells (tube hematocrit 0.30, seed 1),
+//             N = 16, M = 48, lambda = 5, D = 6 tube (h = 0.25), box 6.6 x 6.6 x 13.33,
+//             <u> = 5 e_z, Ewald and GMRES tolerances 1e-6, collisions h_s = 0.02, volume
+//             constraint.
+// Membranes: Skalak with bending, the paper's parameters (35). dt = 1e-3 (about the "auto"
+// step (37) of these cases; the cost of a step hardly depends on it).
+#include <memory>
+#include <string>
+
+#include "libsolver/stepper/cell_stepper.h"
+
+namespace rbcflow::bench {
+
+// Throws std::invalid_argument for an unknown name.
+std::unique_ptr<CellStepper> make_step_case(const std::string& name);
+
+}  // namespace rbcflow::bench
