@@ -6,6 +6,7 @@
 #include <map>
 #include <vector>
 
+#include "centroid_bins.h"
 #include "libsolver/kernels/stokes_kernels.h"
 #include "triangle_rules.h"
 
@@ -105,13 +106,19 @@ NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::D
       for (int k = 0; k < 3; ++k)
         for (int l = 0; l < 3; ++l) out.emplace_back(3 * i + k, 3 * node + l, b(k, l));
   };
+  std::vector<Eigen::Vector3d> centroids(e.num_triangles());
+  for (int t = 0; t < e.num_triangles(); ++t) centroids[t] = e.vertices[t].rowwise().mean();
+  const double max_diameter = e.num_triangles() > 0 ? e.diameters.maxCoeff() : 1.0;
+  const CentroidBins bins(centroids, e.wall.period, near_factor * max_diameter);
 #pragma omp parallel for schedule(dynamic, 16)
   for (int i = 0; i < nt; ++i) {
     const int thread = omp_get_thread_num();
     const Eigen::Vector3d x = targets.row(i).transpose();
     Blocks cor, loc;
-    for (int t = 0; t < e.num_triangles(); ++t) {
-      const Eigen::Vector3d c = e.vertices[t].rowwise().mean();
+    std::vector<int> near_triangles;
+    bins.candidates(x, near_triangles);
+    for (const int t : near_triangles) {
+      const Eigen::Vector3d& c = centroids[t];
       const Eigen::Vector3d r = minimum_image(c - x, e.wall.period);
       if (r.norm() >= near_factor * e.diameters[t]) continue;
       const Eigen::Matrix3d v = e.vertices[t].colwise() + (r - (c - x));  // the image next to x
