@@ -50,6 +50,15 @@ class EwaldRealKernel {
     return (erfc_over_r - gauss) * f + ((erfc_over_r + gauss) * inv_r * inv_r * r.dot(f)) * r;
   }
 
+  // S^R(r) as a matrix, for operators assembled once (wall/wall_real_space.h).
+  Eigen::Matrix3d stokeslet_matrix(const Eigen::Vector3d& r) const {
+    const double r2 = r.squaredNorm(), rn = std::sqrt(r2), inv_r = 1.0 / rn;
+    double e, g;
+    erfc_and_gaussian(xi_ * rn, e, g);
+    const double erfc_over_r = e * inv_r, gauss = two_xi_over_sqrt_pi_ * g;
+    return (erfc_over_r - gauss) * Eigen::Matrix3d::Identity() + ((erfc_over_r + gauss) * inv_r * inv_r) * (r * r.transpose());
+  }
+
   StressletSplitCoeffs stresslet_coeffs(double r) const {
     double e, g;
     erfc_and_gaussian(xi_ * r, e, g);

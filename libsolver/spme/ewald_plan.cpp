@@ -32,6 +32,13 @@ PointField EwaldPlan::single_layer(const PointField& forces) {
   return u;
 }
 
+PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
+  PointField u = smooth_.single_layer(forces);
+  timings_.real_space = 0.0;
+  timings_.smooth = smooth_.timings();
+  return u;
+}
+
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   PointField u = smooth_.double_layer(q, normals);
   const auto start = std::chrono::steady_clock::now();

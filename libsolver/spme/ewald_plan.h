@@ -48,6 +48,9 @@ class EwaldPlan {
 
   PointField single_layer(const PointField& forces);
   PointField double_layer(const PointField& q, const PointField& normals);
+  // The smooth (SPME) part of single_layer alone, for a caller that holds the real-space part
+  // as a matrix (wall/wall_real_space.h).
+  PointField smooth_single_layer(const PointField& forces);
 
   const NeighborList& neighbors() const { return neighbors_; }
   const SpmePlan& smooth() const { return smooth_; }

@@ -3,6 +3,7 @@
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/kernels/stokes_kernels.h"
 #include "libsolver/spme/ewald_parameters.h"
+#include "wall_real_space.h"
 
 namespace rbcflow {
 
@@ -31,9 +32,21 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   ewald_.emplace(grid, wrapped(elements_->points, box), wrapped(targets_, box));
 }
 
+void WallOperator::assemble_real_space() {
+  if (!ewald_ || near_and_real_) return;
+  near_and_real_ = near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
+}
+
 PointField WallOperator::apply(const PointField& f) {
   const PointField density = elements_->weighted_density(f);
   PointField u;
+  if (near_and_real_) {
+    u = ewald_->smooth_single_layer(density);
+    const double self = ewald_real_stokeslet_self(ewald_->xi());
+    for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+    const Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
+    return u + to_field(rest);
+  }
   if (ewald_) {
     u = ewald_->single_layer(density);
     const double self = ewald_real_stokeslet_self(ewald_->xi());

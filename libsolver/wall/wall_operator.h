@@ -24,6 +24,11 @@ class WallOperator {
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance);
 
+  // Periodic box only (no effect in free space): the real-space part of the Ewald sum held as
+  // a sparse matrix from here on (wall_real_space.h), for an operator applied many times at
+  // fixed targets (the wall solve). Products change by rounding only.
+  void assemble_real_space();
+
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);
 
@@ -37,6 +42,7 @@ class WallOperator {
   PointField targets_;
   NearField near_;
   std::optional<EwaldPlan> ewald_;
+  std::optional<Eigen::SparseMatrix<double>> near_and_real_;  // correction + real space
 };
 
 }  // namespace rbcflow
