@@ -9,8 +9,9 @@
 namespace rbcflow {
 
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
-                       const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer)
-    : grids_(std::move(grids)), domain_(domain) {
+                       const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
+                       SpmeGridCache* grid_cache)
+    : grids_(std::move(grids)), domain_(domain), grid_cache_(grid_cache) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
   ScopedTimer geometry_timer(timings_.geometry);
   const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
@@ -28,13 +29,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   double xi_single = 0.0, xi_double = 0.0;
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
-    const EwaldChoice cs = choose_ewald_parameters(EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np);
-    single_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cs.parameters, FftPlanning::estimate), nodes_.x);
-    xi_single = cs.parameters.xi;
+    single_plan_ = std::make_unique<EwaldPlan>(
+        ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np), nodes_.x);
+    xi_single = single_plan_->xi();
     if (with_double_layer) {
-      const EwaldChoice cd = choose_ewald_parameters(EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np);
-      double_plan_ = std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, cd.parameters, FftPlanning::estimate), nodes_.x);
-      xi_double = cd.parameters.xi;
+      double_plan_ = std::make_unique<EwaldPlan>(
+          ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np), nodes_.x);
+      xi_double = double_plan_->xi();
     }
   }
   geometry_timer.stop();

@@ -16,6 +16,7 @@
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/spme/periodic_box.h"
+#include "libsolver/spme/spme_grid_cache.h"
 
 namespace rbcflow {
 
@@ -33,9 +34,11 @@ struct LayerDomain {
 
 class CellLayers {
  public:
-  // with_double_layer = false skips everything the double layer needs (lambda = 1).
+  // with_double_layer = false skips everything the double layer needs (lambda = 1). SPME grids
+  // come from `grid_cache` when given (kept across steps; it must outlive this object).
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
-             const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true);
+             const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true,
+             SpmeGridCache* grid_cache = nullptr);
   ~CellLayers();
 
   int num_cells() const { return static_cast<int>(cells_.size()); }
@@ -44,6 +47,7 @@ class CellLayers {
   const CellQuadratureGeometry& cell(int c) const { return *cells_[c]; }
   const std::shared_ptr<const CellQuadratureGeometry>& cell_geometry(int c) const { return cells_[c]; }
   const LayerDomain& domain() const { return domain_; }
+  SpmeGridCache* grid_cache() const { return grid_cache_; }
   bool has_double_layer() const { return self_double_[0] != nullptr; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs
   const CellLayersTimings& build_timings() const { return timings_; }
@@ -61,6 +65,7 @@ class CellLayers {
 
   std::shared_ptr<const CellGrids> grids_;
   LayerDomain domain_;
+  SpmeGridCache* grid_cache_;
   std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;
   SourceNodes nodes_;
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;

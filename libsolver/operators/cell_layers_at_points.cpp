@@ -18,10 +18,9 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   if (domain.box) {
     const PeriodicBox& box = *domain.box;
     auto plan = [&](EwaldKernel kernel, double& xi) {
-      const EwaldChoice choice = choose_ewald_parameters(kernel, domain.ewald_tolerance, box, ns, points_.rows());
-      xi = choice.parameters.xi;
-      return std::make_unique<EwaldPlan>(std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate),
-                                         layers.nodes().x, points_);
+      auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows());
+      xi = grid->parameters().xi;
+      return std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_);
     };
     single_plan_ = plan(EwaldKernel::stokeslet, xi_single);
     if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double);

@@ -70,7 +70,8 @@ FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, c
       s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
     }
     membrane_timer.stop();
-    layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0);
+    layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0,
+                                          grid_cache_.get());
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
     timing.near_corrections = layers->build_timings().near;

@@ -121,6 +121,7 @@ class CellStepper {
   CellStepperOptions options_;
   std::unique_ptr<WallCoupling> wall_;
   std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall
+  std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // the cells' SPME grids
   StepperState state_;
 };
 

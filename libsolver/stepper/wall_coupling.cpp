@@ -53,7 +53,7 @@ PointField WallCoupling::velocity_at(const PointField& points, const PointField&
 }
 
 WallOperator WallCoupling::operator_at(const PointField& points) const {
-  return WallOperator(elements_, points, box_, ewald_tolerance_);
+  return WallOperator(elements_, points, box_, ewald_tolerance_, grid_cache_.get());
 }
 
 PointField WallCoupling::velocity_at(WallOperator& at_points, const PointField& force) {

@@ -48,6 +48,7 @@ class WallCoupling {
   WallSolveOptions options_;
   WallSolver solver_;
   std::optional<std::array<PointField, 3>> unit_forces_;
+  std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // operator_at's
 };
 
 }  // namespace rbcflow

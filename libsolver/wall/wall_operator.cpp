@@ -2,7 +2,6 @@
 
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/kernels/stokes_kernels.h"
-#include "libsolver/spme/ewald_parameters.h"
 #include "wall_real_space.h"
 
 namespace rbcflow {
@@ -23,13 +22,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 }
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
-                           const PeriodicBox& box, double ewald_tolerance)
+                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache)
     : WallOperator(std::move(elements), targets) {
   const long n = elements_->points.rows();
-  const EwaldChoice choice =
-      choose_ewald_parameters(EwaldKernel::stokeslet, ewald_tolerance, box, n, targets.rows());
-  auto grid = std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
-  ewald_.emplace(grid, wrapped(elements_->points, box), wrapped(targets_, box));
+  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, n, targets.rows()),
+                 wrapped(elements_->points, box), wrapped(targets_, box));
 }
 
 void WallOperator::assemble_real_space() {

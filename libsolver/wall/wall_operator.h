@@ -11,6 +11,7 @@
 
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/spme/periodic_box.h"
+#include "libsolver/spme/spme_grid_cache.h"
 #include "near_field.h"
 #include "wall_elements.h"
 
@@ -20,9 +21,10 @@ class WallOperator {
  public:
   // Free space (direct O(targets x Gauss points) sums; for tests and small walls).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets);
-  // Periodic box; the Ewald parameters are chosen for `ewald_tolerance` (ewald_parameters.h).
+  // Periodic box; the Ewald parameters are chosen for `ewald_tolerance` (ewald_parameters.h),
+  // the grid taken from `grid_cache` when given (spme_grid_cache.h).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
-               const PeriodicBox& box, double ewald_tolerance);
+               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr);
 
   // Periodic box only (no effect in free space): the real-space part of the Ewald sum held as
   // a sparse matrix from here on (wall_real_space.h), for an operator applied many times at

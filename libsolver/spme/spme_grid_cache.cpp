@@ -1,0 +1,25 @@
+#include "spme_grid_cache.h"
+
+namespace rbcflow {
+
+std::shared_ptr<const SpmeGrid> SpmeGridCache::grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
+                                                    long n_sources, long n_targets) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (const Entry& e : entries_) {
+    if (e.kernel == kernel && e.tolerance == tolerance && e.lengths == box.lengths() && e.n_sources == n_sources &&
+        e.n_targets == n_targets)
+      return e.grid;
+  }
+  auto grid = ewald_grid(nullptr, kernel, tolerance, box, n_sources, n_targets);
+  entries_.push_back({kernel, tolerance, box.lengths(), n_sources, n_targets, grid});
+  return grid;
+}
+
+std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
+                                           const PeriodicBox& box, long n_sources, long n_targets) {
+  if (cache) return cache->grid(kernel, tolerance, box, n_sources, n_targets);
+  const EwaldChoice choice = choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets);
+  return std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
+}
+
+}  // namespace rbcflow

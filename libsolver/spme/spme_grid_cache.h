@@ -1,0 +1,38 @@
+#pragma once
+// Ewald parameters and SPME grids (FFTW plans, influence function) kept from one time step to
+// the next: the choice depends only on the kernel, the tolerance, the box and the point counts
+// (ewald_parameters.h), which stay the same for a whole run, so each grid of a run is chosen and
+// built once instead of at every step. A cached grid is the grid a fresh build would give.
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "ewald_parameters.h"
+#include "spme_grid.h"
+
+namespace rbcflow {
+
+class SpmeGridCache {
+ public:
+  // The grid of choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets), with
+  // FFTW_ESTIMATE plans. Thread-safe.
+  std::shared_ptr<const SpmeGrid> grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box, long n_sources,
+                                       long n_targets = -1);
+
+ private:
+  struct Entry {
+    EwaldKernel kernel;
+    double tolerance;
+    Eigen::Vector3d lengths;
+    long n_sources, n_targets;
+    std::shared_ptr<const SpmeGrid> grid;
+  };
+  std::mutex mutex_;
+  std::vector<Entry> entries_;
+};
+
+// From `cache`, or built afresh when it is null.
+std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
+                                           const PeriodicBox& box, long n_sources, long n_targets = -1);
+
+}  // namespace rbcflow
