@@ -13,30 +13,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "geometry/reference_shapes.h"
-#include "libsolver/stepper/cell_stepper.h"
+#include "capsule_relaxation.h"
 
 using namespace rbcflow;
 
 namespace {
-
-struct Mode {
-  double w_slow, b_over_a;
-};
-
-// REFERENCES.md section 4: the slow root of the secular equation and its B/A ratio.
-Mode slow_mode(int l, double lam, double Gs, double Ks) {
-  const double L = l * (l + 1.0);
-  const double Rrr = (2.0 * l * l + 3 * l + 4) / (l + 1) + lam * (2.0 * l * l + l + 3) / l;
-  const double Rrp = -3 * (l + lam * (l + 1));
-  const double Rpp = (2 * l + 1) * (1 + lam);
-  const double Krr = 4 * Ks, Kpp = Ks * L + Gs * (L - 2);
-  const double a = L * Rrr * Rpp - Rrp * Rrp;
-  const double b = -L * (Krr * Rpp + Kpp * Rrr) - 4 * Ks * L * Rrp;
-  const double c = L * Krr * Kpp - 4 * Ks * Ks * L * L;
-  const double w = (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a);
-  return {w, (Krr - w * Rrr) / (2 * Ks * L + w * Rrp)};
-}
 
 double euler_relative_error(double h) { return -std::log(1 - h) / h - 1; }
 double ab2_relative_error(double h) {
@@ -44,50 +25,18 @@ double ab2_relative_error(double h) {
   return -std::log(z) / h - 1;
 }
 
-constexpr int kL = 2, kM = 2;
-constexpr double kShear = 1.0, kDilatation = 2.5;
+constexpr int kL = 2;  // the mode (l, m = 2) of test::relaxing_capsule (E_S = 1, E_D = 2.5)
 
 // Rate of mode (l, m) measured from ln(amplitude) between t_start and t_end (both multiples
 // of dt), the capsule started in the theoretical slow eigenmode.
 double measured_rate(TimeScheme scheme, int N, double dt, double t_start, double t_end) {
   auto grids = CellGrids::make(N, 2 * N);
-  const Mode th = slow_mode(kL, 1.0, kShear, kShear + kDilatation);
-  const SHTransform sample(2 * N, SphGrid::gauss(2 * N), 1);
-  SHCoeffs y(2 * N, 1);
-  y.a(kL, kM) = 1.0;
-  const Eigen::MatrixXd Y = sample.synthesize(y), Yt = sample.synthesize(y, 1, 0), Yp = sample.synthesize(y, 0, 1);
-  Eigen::MatrixXd x(sample.grid().size(), 3);
-  const double eps = 1e-4;
-  for (int p = 0; p < sample.grid().size(); ++p) {
-    const double t = sample.grid().theta()[p / sample.grid().n_phi()], ph = sample.grid().phi(p % sample.grid().n_phi());
-    const Eigen::Vector3d u(std::sin(t) * std::cos(ph), std::sin(t) * std::sin(ph), std::cos(t));
-    const Eigen::Vector3d et(std::cos(t) * std::cos(ph), std::cos(t) * std::sin(ph), -std::sin(t)), ep(-std::sin(ph), std::cos(ph), 0);
-    const Eigen::Vector3d grad = Yt(p, 0) * et + Yp(p, 0) / std::sin(t) * ep;
-    x.row(p) = u + eps * (Y(p, 0) * u + th.b_over_a * grad);
-  }
-  Cell cell;
-  cell.shape = SHSurface(sample.analyze(x, N));
-  cell.membrane = std::make_shared<const Membrane>(
-      make_sphere(N), grids, MembraneParameters{std::make_shared<HookeanLaw>(kShear, kDilatation), 0.0});
   CellStepperOptions o;
   o.dt = dt;
   o.scheme = scheme;
   o.viscosity_ratio = 1.0;
-  CellStepper stepper({cell}, grids, o);
-  const SHTransform& tn = *grids->n_grid;
-  SHCoeffs yn(N, 1);
-  yn.a(kL, kM) = 1.0;
-  const Eigen::MatrixXd Yn = tn.synthesize(yn), U = tn.synthesize(make_sphere(N).coeffs());
-  auto amplitude = [&]() {
-    const Eigen::MatrixXd xs = tn.synthesize(stepper.cells()[0].shape.coeffs());
-    double num = 0, den = 0;
-    for (int p = 0; p < tn.grid().size(); ++p) {
-      const double w = tn.grid().sphere_weight(p);
-      num += w * (xs.row(p).dot(U.row(p)) - 1.0) * Yn(p, 0);
-      den += w * Yn(p, 0) * Yn(p, 0);
-    }
-    return num / den;
-  };
+  CellStepper stepper({test::relaxing_capsule(kL, 1.0, N, grids)}, grids, o);
+  auto amplitude = [&]() { return test::mode_amplitude(stepper.cells()[0].shape, kL, *grids->n_grid); };
   const long n_start = std::lround(t_start / dt), n_end = std::lround(t_end / dt);
   double a_start = amplitude();
   for (long n = 1; n <= n_end; ++n) {
@@ -130,7 +79,7 @@ void print(const char* name, const Convergence& c, double (*predicted)(double)) 
 TEST(TimeAccuracy, EulerIsFirstOrderAndFollowsEq43) {
   const Convergence c = converge(TimeScheme::euler, 8, 0.016, 0.25, 1.25);
   print("forward Euler", c, euler_relative_error);
-  const double w_theory = slow_mode(kL, 1.0, kShear, kShear + kDilatation).w_slow;
+  const double w_theory = test::slow_mode(kL, 1.0, 1.0, 3.5).w_slow;
   std::printf("  theory w_slow = %.8f (extrapolated / theory - 1 = %.1e)\n", w_theory, c.extrapolated / w_theory - 1);
   EXPECT_NEAR(c.order, 1.0, 0.15);
   for (std::size_t i = 0; i < c.dt.size(); ++i) {
