@@ -88,6 +88,17 @@ RunSetup setup_run(const Case& c) {
   o.volume_constraint = c.time.volume_constraint;
   o.wall_solve.tolerance = c.solver.gmres_tolerance;
   o.domain.ewald_tolerance = c.ewald.tolerance;
+  // The solver chooses alpha, cutoff, grid and spline order for each of its sums from the
+  // tolerance; a hand-set value would be silently ignored, so it is refused.
+  for (const auto& [key, set] : {std::pair{"ewald.alpha", c.ewald.alpha.has_value()},
+                                 std::pair{"ewald.cutoff", c.ewald.cutoff.has_value()},
+                                 std::pair{"ewald.grid", c.ewald.grid.has_value()},
+                                 std::pair{"ewald.spline_order", c.ewald.spline_order.has_value()}}) {
+    if (set) {
+      throw case_error(c, key, "rbcflow run does not take expert Ewald overrides yet; remove it (the solver "
+                               "chooses every Ewald parameter from ewald.tolerance: see rbcflow check)");
+    }
+  }
   if (c.domain.kind == DomainKind::periodic) {
     o.domain.box = PeriodicBox(to_eigen(c.domain.box));
     if (c.domain.mean_velocity) o.mean_velocity = to_eigen(*c.domain.mean_velocity);
