@@ -326,8 +326,8 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
     v.path = (base / *p).lexically_normal();
     std::string ext = v.path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".msh" && ext != ".stl" && ext != ".step" && ext != ".stp") {
-      t->fail("path", "\"" + *p + "\" is not a .msh, .stl or .step file");
+    if (ext != ".msh" && ext != ".stl" && ext != ".step" && ext != ".stp" && ext != ".iges" && ext != ".igs") {
+      t->fail("path", "\"" + *p + "\" is not a .msh, .stl, .step or .iges file");
     }
     if (!fs::is_regular_file(v.path)) t->fail("path", "no such file: " + v.path.string());
     v.scale = t->real("scale", v.scale, positive());
