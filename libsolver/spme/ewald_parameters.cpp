@@ -79,12 +79,12 @@ double spacing_for(EwaldKernel kernel, const PeriodicBox& box, double xi, int or
 }
 
 double modelled_seconds(EwaldKernel kernel, const EwaldParameters& p, double n_sources,
-                        double n_targets, double neighbours) {
+                        double n_targets, double neighbours, double real_space_weight) {
   const CostModel& c = kernel == EwaldKernel::stokeslet ? kCostStokeslet : kCostStresslet;
   const double in = kernel == EwaldKernel::stokeslet ? 3.0 : 6.0;  // density components
   const double nodes = static_cast<double>(p.order) * p.order * p.order;
   const double points = static_cast<double>(p.grid[0]) * p.grid[1] * p.grid[2];
-  return c.pair * n_targets * neighbours + c.node * nodes * (in * n_sources + 3.0 * n_targets) +
+  return real_space_weight * c.pair * n_targets * neighbours + c.node * nodes * (in * n_sources + 3.0 * n_targets) +
          c.fft * (in + 3.0) * points * std::log2(points) + c.mode * points / 2.0;
 }
 
@@ -114,6 +114,17 @@ void validate(const EwaldParameters& p, const PeriodicBox& box) {
 
 EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
                                     long n_sources, long n_targets) {
+  return choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets, RealSpaceUse{});
+}
+
+EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
+                                    long n_sources, long n_targets, const RealSpaceUse& real_space) {
+  if (!(real_space.weight > 0.0 && real_space.weight <= 1.0))
+    throw std::invalid_argument("Ewald parameters: the real-space weight must be in (0, 1], got " +
+                                std::to_string(real_space.weight));
+  if (!(real_space.max_pairs >= 1.0 && real_space.max_pairs <= kMaxPairs))
+    throw std::invalid_argument("Ewald parameters: the real-space pair bound must be in [1, 1e9], got " +
+                                std::to_string(real_space.max_pairs));
   if (!(tolerance >= 1e-10 && tolerance <= 1e-3)) {
     std::ostringstream msg;
     msg << "Ewald parameters: tolerance must be between 1e-10 and 1e-3, got " << tolerance;
@@ -140,13 +151,13 @@ EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const 
     const double xi = xi_lo * std::pow(xi_hi / xi_lo, i / (n_xi - 1.0));
     const double cutoff = cutoff_for(kernel, box, xi, part);
     const double neighbours = ns * 4.0 / 3.0 * pi * cutoff * cutoff * cutoff / V;
-    if (neighbours * nt > kMaxPairs) continue;
+    if (neighbours * nt > real_space.max_pairs) continue;
     for (int order = kMinSplineOrder; order <= kMaxSplineOrder; ++order) {
       const double h = spacing_for(kernel, box, xi, order, part);
       if (h <= 0.0) continue;
       EwaldParameters p{xi, cutoff, grid_for(box, h, order), order};
       if (static_cast<double>(p.grid[0]) * p.grid[1] * p.grid[2] > kMaxGridPoints) continue;
-      const double seconds = modelled_seconds(kernel, p, ns, nt, neighbours);
+      const double seconds = modelled_seconds(kernel, p, ns, nt, neighbours, real_space.weight);
       if (seconds < best.estimated_seconds) {
         best.parameters = p;
         best.estimated_seconds = seconds;
@@ -157,7 +168,7 @@ EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const 
   if (!std::isfinite(best.estimated_seconds)) {
     std::ostringstream msg;
     msg << "Ewald parameters: tolerance " << tolerance << " for " << n_sources
-        << " sources needs more than " << kMaxPairs << " real-space pairs or " << kMaxGridPoints
+        << " sources needs more than " << real_space.max_pairs << " real-space pairs or " << kMaxGridPoints
         << " grid points";
     throw std::invalid_argument(msg.str());
   }

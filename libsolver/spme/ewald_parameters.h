@@ -40,9 +40,22 @@ struct EwaldChoice {
 // (a factor 2 of margin for the ~1.5x accuracy of the estimates). The grid sides are even
 // FFT-friendly sizes (2^a 3^b 5^c 7^d) of nearly equal spacing. `tolerance` is the
 // normalised RMS error of ewald_error_estimates.h, between 1e-10 and 1e-3; n_targets < 0
-// means as many targets as sources. Throws std::invalid_argument for bad input.
+// means as many targets as sources. `real_space` says how the caller evaluates the real-space
+// sum (below). Throws std::invalid_argument for bad input.
+struct RealSpaceUse;
 EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
                                     long n_sources, long n_targets = -1);
+EwaldChoice choose_ewald_parameters(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
+                                    long n_sources, long n_targets, const RealSpaceUse& real_space);
+
+// How the real-space sum is evaluated, for the cost model: pair by pair at every product
+// (the default), or assembled once as a sparse matrix and applied many times (the wall solve,
+// wall_real_space.h), where a pair costs a fraction `weight` of a kernel evaluation; the choice
+// then moves to a larger cutoff and a coarser grid, bounded by `max_pairs` (memory).
+struct RealSpaceUse {
+  double weight = 1.0;
+  double max_pairs = 1e9;
+};
 
 std::ostream& operator<<(std::ostream& os, const EwaldParameters& p);
 std::ostream& operator<<(std::ostream& os, const EwaldChoice& c);

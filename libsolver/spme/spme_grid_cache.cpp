@@ -3,22 +3,25 @@
 namespace rbcflow {
 
 std::shared_ptr<const SpmeGrid> SpmeGridCache::grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box,
-                                                    long n_sources, long n_targets) {
+                                                    long n_sources, long n_targets, const RealSpaceUse& real_space) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (const Entry& e : entries_) {
     if (e.kernel == kernel && e.tolerance == tolerance && e.lengths == box.lengths() && e.n_sources == n_sources &&
-        e.n_targets == n_targets)
+        e.n_targets == n_targets && e.real_space.weight == real_space.weight &&
+        e.real_space.max_pairs == real_space.max_pairs)
       return e.grid;
   }
-  auto grid = ewald_grid(nullptr, kernel, tolerance, box, n_sources, n_targets);
-  entries_.push_back({kernel, tolerance, box.lengths(), n_sources, n_targets, grid});
+  auto grid = ewald_grid(nullptr, kernel, tolerance, box, n_sources, n_targets, real_space);
+  entries_.push_back({kernel, tolerance, box.lengths(), n_sources, n_targets, real_space, grid});
   return grid;
 }
 
 std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
-                                           const PeriodicBox& box, long n_sources, long n_targets) {
-  if (cache) return cache->grid(kernel, tolerance, box, n_sources, n_targets);
-  const EwaldChoice choice = choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets);
+                                           const PeriodicBox& box, long n_sources, long n_targets,
+                                           const RealSpaceUse& real_space) {
+  if (cache) return cache->grid(kernel, tolerance, box, n_sources, n_targets, real_space);
+  const EwaldChoice choice =
+      choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets, real_space);
   return std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
 }
 

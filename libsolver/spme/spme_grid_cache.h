@@ -14,10 +14,10 @@ namespace rbcflow {
 
 class SpmeGridCache {
  public:
-  // The grid of choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets), with
-  // FFTW_ESTIMATE plans. Thread-safe.
+  // The grid of choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets,
+  // real_space), with FFTW_ESTIMATE plans. Thread-safe.
   std::shared_ptr<const SpmeGrid> grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box, long n_sources,
-                                       long n_targets = -1);
+                                       long n_targets = -1, const RealSpaceUse& real_space = {});
 
  private:
   struct Entry {
@@ -25,6 +25,7 @@ class SpmeGridCache {
     double tolerance;
     Eigen::Vector3d lengths;
     long n_sources, n_targets;
+    RealSpaceUse real_space;
     std::shared_ptr<const SpmeGrid> grid;
   };
   std::mutex mutex_;
@@ -33,6 +34,7 @@ class SpmeGridCache {
 
 // From `cache`, or built afresh when it is null.
 std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
-                                           const PeriodicBox& box, long n_sources, long n_targets = -1);
+                                           const PeriodicBox& box, long n_sources, long n_targets = -1,
+                                           const RealSpaceUse& real_space = {});
 
 }  // namespace rbcflow

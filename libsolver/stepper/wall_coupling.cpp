@@ -11,7 +11,8 @@ WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const Perio
       box_(box),
       ewald_tolerance_(ewald_tolerance),
       options_(options),
-      solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance)) {}
+      solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance, nullptr,
+                           WallOperator::RealSpace::assembled)) {}
 
 WallSolution WallCoupling::solve(const PointField& v, const PointField& guess) {
   return solver_.solve(v, 1.0, options_, guess);

@@ -22,16 +22,19 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 }
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
-                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache)
+                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
+                           RealSpace real_space)
     : WallOperator(std::move(elements), targets) {
   const long n = elements_->points.rows();
-  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, n, targets.rows()),
+  const RealSpaceUse use = real_space == RealSpace::assembled ? kAssembledRealSpace : RealSpaceUse{};
+  const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
+  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, targets.rows(), use),
                  wrapped(elements_->points, box), wrapped(targets_, box));
-}
-
-void WallOperator::assemble_real_space() {
-  if (!ewald_ || near_and_real_) return;
-  near_and_real_ = near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
+  if (real_space == RealSpace::assembled) {
+    const Eigen::SparseMatrix<double> sum =
+        near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
+    near_and_real_.emplace(sum);  // row-major: Eigen's sparse product is OpenMP-parallel over rows
+  }
 }
 
 PointField WallOperator::apply(const PointField& f) {

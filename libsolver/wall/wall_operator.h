@@ -22,14 +22,15 @@ class WallOperator {
   // Free space (direct O(targets x Gauss points) sums; for tests and small walls).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets);
   // Periodic box; the Ewald parameters are chosen for `ewald_tolerance` (ewald_parameters.h),
-  // the grid taken from `grid_cache` when given (spme_grid_cache.h).
+  // the grid taken from `grid_cache` when given (spme_grid_cache.h). `real_space` says whether
+  // the real-space sum is evaluated at every product or assembled once (assemble_real_space();
+  // the choice then favours a large cutoff and a coarse grid, at a tenth of the tolerance:
+  // kAssembledRealSpace and kAssembledToleranceFactor in wall_real_space.h).
+  enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
-               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr);
+               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
+               RealSpace real_space = RealSpace::per_product);
 
-  // Periodic box only (no effect in free space): the real-space part of the Ewald sum held as
-  // a sparse matrix from here on (wall_real_space.h), for an operator applied many times at
-  // fixed targets (the wall solve). Products change by rounding only.
-  void assemble_real_space();
 
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);
@@ -44,7 +45,10 @@ class WallOperator {
   PointField targets_;
   NearField near_;
   std::optional<EwaldPlan> ewald_;
-  std::optional<Eigen::SparseMatrix<double>> near_and_real_;  // correction + real space
+  // Periodic box, RealSpace::assembled: the real-space part of the Ewald sum as a sparse matrix
+  // (wall_real_space.h) plus the near-field correction, for an operator applied many times at
+  // fixed targets (the wall solve). Products change by rounding only.
+  std::optional<Eigen::SparseMatrix<double, Eigen::RowMajor>> near_and_real_;
 };
 
 }  // namespace rbcflow

@@ -7,10 +7,24 @@
 // one sparse product over nodes instead of a kernel evaluation per (target, Gauss point) pair.
 #include <Eigen/SparseCore>
 
+#include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/neighbor_list.h"
 #include "wall_elements.h"
 
 namespace rbcflow {
+
+// The Ewald cost model of this matrix (ewald_parameters.h): a (target, Gauss point) pair costs
+// about 1/100 of a kernel evaluation per product (the matrix holds one 3x3 block per (target,
+// node) pair, a 14th as many as Gauss pairs, applied at ~1 ns per entry, and its assembly is
+// spread over every GMRES product of a run); at most 5e7 pairs (~0.6 GB of matrix). Measured
+// on the minicase (bench_step): weights 1, 0.1, 0.025, 0.01 gave 0.71, 0.32, 0.32, 0.26 s per
+// wall solve of 9 iterations.
+inline constexpr RealSpaceUse kAssembledRealSpace{0.01, 5e7};
+// The error estimates assume uncorrelated sources; the smooth densities of a wall add up
+// coherently over the large cutoff this choice makes, and the measured error exceeded the
+// tolerance up to 7x (tests/libsolver/wall/test_wall_real_space.cpp). The assembled operator
+// therefore asks the chooser for a tenth of the user's tolerance (and then meets it).
+inline constexpr double kAssembledToleranceFactor = 0.1;
 
 // `pairs`: the neighbour list of the Ewald plan whose sources are the Gauss points of
 // `elements` (row 7 T + q) and whose targets are the operator's.

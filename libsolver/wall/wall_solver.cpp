@@ -9,7 +9,6 @@ namespace rbcflow {
 WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
   if (op_.num_targets() != op_.elements().num_nodes())
     throw std::invalid_argument("wall solver: the operator's targets must be the wall nodes");
-  op_.assemble_real_space();  // applied in every GMRES iteration of every solve
   near_lu_.compute(op_.near().local);
   if (near_lu_.info() != Eigen::Success)
     throw std::runtime_error("wall solver: the near-field preconditioner is singular");

@@ -3,8 +3,8 @@
 //   (1/(8 pi mu)) N_W f = v  at every wall node,
 // v the velocity the wall must cancel (<u> minus what the cells induce; <u> alone here), by
 // right-preconditioned GMRES. The preconditioner is a sparse LU of the local near-field
-// block (NearField::local), factorised once; the operator's real-space Ewald part is assembled
-// once too (WallOperator::assemble_real_space). Not converging is an error.
+// block (NearField::local), factorised once; build the operator with RealSpace::assembled so
+// that its real-space Ewald part is a sparse matrix too. Not converging is an error.
 #include <Eigen/Core>
 #include <Eigen/SparseLU>
 

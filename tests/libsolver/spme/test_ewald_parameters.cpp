@@ -52,6 +52,27 @@ TEST(EwaldParameters, CostGrowsWithAccuracyAndXiWithDensity) {
   EXPECT_GT(xi_many, 2.0 * xi_few);
 }
 
+// A real-space sum assembled once (cheap pairs) moves the choice to a smaller xi: a larger
+// cutoff and a coarser grid, within the same error budget and the caller's pair bound.
+TEST(EwaldParameters, CheapRealSpaceMovesWorkFromTheGrid) {
+  const PeriodicBox box(Eigen::Vector3d(10.5, 10.5, 8.0));
+  const long n = 16800, targets = 1200;
+  const EwaldChoice plain = choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, n, targets);
+  const RealSpaceUse cheap{0.01, 5e7};
+  const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, n, targets, cheap);
+  EXPECT_LT(c.parameters.xi, plain.parameters.xi);
+  EXPECT_GT(c.parameters.cutoff, plain.parameters.cutoff);
+  const auto points = [](const EwaldParameters& p) { return double(p.grid[0]) * p.grid[1] * p.grid[2]; };
+  EXPECT_LT(points(c.parameters), points(plain.parameters));
+  EXPECT_LE(std::hypot(c.real_space_error, c.grid_error), 0.5 * 1e-6 * (1 + 1e-9));
+  EXPECT_LE(c.neighbours_per_target * targets, cheap.max_pairs);
+  // A tight pair bound keeps the cutoff small.
+  const EwaldChoice bounded =
+      choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, n, targets, RealSpaceUse{0.01, 1e6});
+  EXPECT_LE(bounded.neighbours_per_target * targets, 1e6);
+  EXPECT_LT(bounded.parameters.cutoff, c.parameters.cutoff);
+}
+
 TEST(EwaldParameters, PrintsEverythingRbcflowCheckShows) {
   const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stresslet, 1e-6,
                                                 PeriodicBox(Eigen::Vector3d::Ones()), 1000);
@@ -68,6 +89,10 @@ TEST(EwaldParameters, RejectsBadInput) {
   EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-11, box, 100),
                std::invalid_argument);
   EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 0),
+               std::invalid_argument);
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 100, 100, RealSpaceUse{0.0, 1e6}),
+               std::invalid_argument);
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stokeslet, 1e-6, box, 100, 100, RealSpaceUse{0.5, 1e12}),
                std::invalid_argument);
   EXPECT_THROW(validate(EwaldParameters{5.0, 0.3, {16, 16, 16}, 3}, box), std::invalid_argument);
   EXPECT_THROW(validate(EwaldParameters{5.0, 0.3, {16, 17, 16}, 4}, box), std::invalid_argument);

@@ -47,7 +47,8 @@ TEST(WallSolver, UnconvergedSolveIsAnError) {
   spec.box = Eigen::Vector3d(5.0, 5.0, 2.0);
   spec.element_size = 0.5;
   auto e = std::make_shared<const WallElements>(tube(spec));
-  WallSolver solver(WallOperator(e, e->wall.surface.points, PeriodicBox(spec.box), 1e-6));
+  WallSolver solver(WallOperator(e, e->wall.surface.points, PeriodicBox(spec.box), 1e-6, nullptr,
+                                 WallOperator::RealSpace::assembled));
   WallSolveOptions options;
   options.max_iterations = 2;
   try {

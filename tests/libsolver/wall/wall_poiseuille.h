@@ -28,7 +28,8 @@ inline TubeFlowResult tube_flow(double diameter, double side, double length, dou
   auto e = std::make_shared<const WallElements>(tube(spec));
   const PeriodicBox box(spec.box);
   const double ewald_tolerance = 1e-8;
-  WallSolver solver(WallOperator(e, e->wall.surface.points, box, ewald_tolerance));
+  WallSolver solver(
+      WallOperator(e, e->wall.surface.points, box, ewald_tolerance, nullptr, WallOperator::RealSpace::assembled));
   const Eigen::RowVector3d mean(0, 0, 1);
   const WallSolution s = solver.solve(mean.replicate(e->num_nodes(), 1), 1.0);
 
