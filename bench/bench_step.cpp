@@ -5,8 +5,9 @@
 // One line per step (step 1 of a lambda != 1 case with walls includes the start sweeps), then
 // the minimum over the later steps of each column (wall-clock seconds; cpu: process CPU time,
 // all threads). Set-up (mesh, wall operator and its LU,
-// placement) is timed apart.
+// placement) is timed apart; the peak resident memory of the process closes the output.
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -51,7 +52,7 @@ void print_row(const char* label, double step, double cpu, const StepTimings& t,
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_step single|minicase|tube27 [--steps K]\n");
+    std::fprintf(stderr, "usage: bench_step single|minicase|tubeK [--steps K]  (tubeK: K cells, e.g. tube27)\n");
     return 2;
   }
   const std::string name = argv[1];
@@ -86,6 +87,10 @@ int main(int argc, char** argv) {
       for (const Column& c : kColumns) best.*c.field = std::min(best.*c.field, s.timings.*c.field);
     }
     print_row("min", best_step, best_cpu, best, 0, 0);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const double peak_mb = usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+    std::printf("peak memory %.0f MB (%.1f MB per cell)\n", peak_mb, peak_mb / stepper->cells().size());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());
     return 1;

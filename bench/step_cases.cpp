@@ -1,6 +1,7 @@
 #include "step_cases.h"
 
 #include <Eigen/Geometry>
+#include <exception>
 #include <stdexcept>
 
 #include "geometry/cell_placement.h"
@@ -66,13 +67,15 @@ std::unique_ptr<CellStepper> minicase() {
   return make(spec, std::move(o));
 }
 
-std::unique_ptr<CellStepper> tube27() {
-  const Eigen::Vector3d box(6.6, 6.6, 13.33);
+// `count` cells at the tube hematocrit of tube_27_cells.toml: the period grows with the count
+// (13.33 for 27 cells).
+std::unique_ptr<CellStepper> tube_cells(int count) {
+  const Eigen::Vector3d box(6.6, 6.6, 13.33 * count / 27.0);
   const VesselMesh vessel = tube(TubeSpec{6.0, 2, box, 0.25});
   Spec spec{16, 48, 5.0, {}};
   PlacementSpec placement;
   placement.box = box;
-  placement.count = 27;
+  placement.count = count;
   placement.gap = 0.05;  // max(h_s, 0.05), as rbcflow run places cells
   placement.seed = 1;
   const SHSurface rbc = make_biconcave(16);
@@ -94,8 +97,16 @@ std::unique_ptr<CellStepper> tube27() {
 std::unique_ptr<CellStepper> make_step_case(const std::string& name) {
   if (name == "single") return single();
   if (name == "minicase") return minicase();
-  if (name == "tube27") return tube27();
-  throw std::invalid_argument("unknown case '" + name + "' (single, minicase, tube27)");
+  if (name.starts_with("tube")) {
+    std::size_t used = 0;
+    int count = 0;
+    try {
+      count = std::stoi(name.substr(4), &used);
+    } catch (const std::exception&) {
+    }
+    if (count >= 1 && 4 + used == name.size()) return tube_cells(count);
+  }
+  throw std::invalid_argument("unknown case '" + name + "' (single, minicase, tubeK: K cells, e.g. tube27)");
 }
 
 }  // namespace rbcflow::bench
