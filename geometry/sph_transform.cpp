@@ -207,4 +207,34 @@ Eigen::RowVectorXd sh_evaluate(const SHCoeffs& c, double theta, double phi, int 
   return value;
 }
 
+SHJet sh_evaluate_jet(const SHCoeffs& c, double theta, double phi) {
+  if (c.components() != 3) throw std::invalid_argument("sh_evaluate_jet: need 3 components");
+  const int nc = c.order();
+  const LegendreTables t = legendre_theta_tables(Eigen::VectorXd::Constant(1, theta), nc, 2);
+  SHJet j;
+  j.x = j.x_t = j.x_p = j.x_tt = j.x_tp = j.x_pp = Eigen::Vector3d::Zero();
+  const double c1 = std::cos(phi), s1 = std::sin(phi);
+  double cm = 1.0, sm = 0.0;  // cos(m phi), sin(m phi) by the angle-addition recurrence
+  for (int m = 0; m < nc; ++m) {
+    const int len = nc - m;
+    const auto cos_block = c.values().middleRows(SHCoeffs::cos_offset(nc, m), len);
+    Eigen::Vector3d A[3], B[3];  // theta derivative k of the cos and sin parts
+    for (int k = 0; k < 3; ++k) {
+      A[k] = (t[k][m].row(0) * cos_block).transpose();
+      B[k] = m > 0 ? Eigen::Vector3d((t[k][m].row(0) * c.values().middleRows(SHCoeffs::sin_offset(nc, m), len)).transpose())
+                   : Eigen::Vector3d::Zero();
+    }
+    j.x += cm * A[0] + sm * B[0];
+    j.x_t += cm * A[1] + sm * B[1];
+    j.x_tt += cm * A[2] + sm * B[2];
+    j.x_p += m * (cm * B[0] - sm * A[0]);
+    j.x_tp += m * (cm * B[1] - sm * A[1]);
+    j.x_pp -= double(m) * m * (cm * A[0] + sm * B[0]);
+    const double next = cm * c1 - sm * s1;
+    sm = sm * c1 + cm * s1;
+    cm = next;
+  }
+  return j;
+}
+
 }  // namespace rbcflow

@@ -57,4 +57,12 @@ class SHTransform {
 Eigen::RowVectorXd sh_evaluate(const SHCoeffs& c, double theta, double phi, int dtheta = 0,
                                int dphi = 0);
 
+// A 3-component expansion (a surface x) and its derivatives up to second order in theta and
+// phi at one point, from one Legendre table: what a Newton iteration on the surface needs.
+// Equal to sh_evaluate with (dtheta, dphi) = (0,0), (1,0), (0,1), (2,0), (1,1), (0,2).
+struct SHJet {
+  Eigen::Vector3d x, x_t, x_p, x_tt, x_tp, x_pp;
+};
+SHJet sh_evaluate_jet(const SHCoeffs& c, double theta, double phi);
+
 }  // namespace rbcflow

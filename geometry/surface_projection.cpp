@@ -28,13 +28,26 @@ SurfaceProjection project_onto_surface(const SHCoeffs& x, const Eigen::Vector3d&
   for (int it = 0; it < max_iterations; ++it) {
     const double theta = off_pole(std::acos(std::clamp(u.z(), -1.0, 1.0)));
     const double phi = std::atan2(u.y(), u.x());
-    const Eigen::Vector3d p = sh_evaluate(x, theta, phi).transpose();
-    // Derivatives along the orthonormal directions e_theta, e_phi of the parameter sphere.
+    const SHJet j = sh_evaluate_jet(x, theta, phi);
+    // Derivatives along the orthonormal directions e_theta, e_phi of the parameter sphere (the
+    // local chart (theta + a, phi + b / sin(theta))).
     const double st = std::sin(theta);
     Eigen::Matrix<double, 3, 2> J;
-    J.col(0) = sh_evaluate(x, theta, phi, 1, 0).transpose();
-    J.col(1) = sh_evaluate(x, theta, phi, 0, 1).transpose() / st;
-    const Eigen::Vector2d step = (J.transpose() * J).ldlt().solve(J.transpose() * (x0 - p));
+    J.col(0) = j.x_t;
+    J.col(1) = j.x_p / st;
+    const Eigen::Vector3d r = j.x - x0;
+    const Eigen::Vector2d g = J.transpose() * r;  // gradient of |x - x0|^2 / 2
+    const Eigen::Matrix2d gauss_newton = J.transpose() * J;
+    // Newton on |x - x0|^2 / 2 (quadratic convergence also off the surface, where Gauss-Newton
+    // is only linear); Gauss-Newton where the Hessian is not positive definite (far away).
+    Eigen::Matrix2d hessian = gauss_newton;
+    hessian(0, 0) += r.dot(j.x_tt);
+    hessian(0, 1) += r.dot(j.x_tp) / st;
+    hessian(1, 0) = hessian(0, 1);
+    hessian(1, 1) += r.dot(j.x_pp) / (st * st);
+    const Eigen::LDLT<Eigen::Matrix2d> newton(hessian);
+    const bool definite = newton.info() == Eigen::Success && newton.isPositive() && (newton.vectorD().array() > 0).all();
+    const Eigen::Vector2d step = definite ? Eigen::Vector2d(-newton.solve(g)) : Eigen::Vector2d(-gauss_newton.ldlt().solve(g));
     const Eigen::Vector3d e_theta(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), -std::sin(theta));
     const Eigen::Vector3d e_phi(-std::sin(phi), std::cos(phi), 0.0);
     // Rotate u along the great circle in the step direction (keeps |u| = 1).
@@ -44,18 +57,18 @@ SurfaceProjection project_onto_surface(const SHCoeffs& x, const Eigen::Vector3d&
       u = std::cos(std::min(angle, 0.5)) * u + std::sin(std::min(angle, 0.5)) * t;
       u.normalize();
     }
-    // Gauss-Newton converges linearly off the surface: iterate to round-off, and call it
-    // converged once the steps are tiny (at a pole the 1e-9 offset stops them there).
+    // Iterate to round-off; converged once the steps are tiny (at a pole the 1e-9 offset
+    // stops them there).
     s.converged = angle < 1e-9;
+    s.iterations = it + 1;
     if (angle < 1e-14) break;
   }
   s.theta = off_pole(std::acos(std::clamp(u.z(), -1.0, 1.0)));
   s.phi = std::atan2(u.y(), u.x());
   if (s.phi < 0) s.phi += 2 * std::numbers::pi;
-  s.point = sh_evaluate(x, s.theta, s.phi).transpose();
-  const Eigen::Vector3d a1 = sh_evaluate(x, s.theta, s.phi, 1, 0).transpose();
-  const Eigen::Vector3d a2 = sh_evaluate(x, s.theta, s.phi, 0, 1).transpose();
-  s.normal = a1.cross(a2).normalized();
+  const SHJet j = sh_evaluate_jet(x, s.theta, s.phi);
+  s.point = j.x;
+  s.normal = j.x_t.cross(j.x_p).normalized();
   s.distance = (x0 - s.point).norm();
   s.signed_distance = (x0 - s.point).dot(s.normal) >= 0 ? s.distance : -s.distance;
   return s;

@@ -15,9 +15,11 @@ struct SurfaceProjection {
   double distance = 0;        // |x0 - point|
   double signed_distance = 0; // > 0 outside (along the outward normal), < 0 inside
   bool converged = false;
+  int iterations = 0;         // Newton iterations taken
 };
 
-// Newton iterations from (theta0, phi0); updates move along the unit sphere of parameters
+// Newton iterations from (theta0, phi0) (Gauss-Newton while the Hessian of the squared
+// distance is indefinite); updates move along the unit sphere of parameters
 // (directions, not (theta, phi) directly) so that nothing special happens near the poles.
 SurfaceProjection project_onto_surface(const SHCoeffs& x, const Eigen::Vector3d& x0, double theta0,
                                        double phi0, int max_iterations = 30);

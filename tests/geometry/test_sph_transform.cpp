@@ -143,6 +143,22 @@ TEST(SHTransform, ResamplingToHigherOrderAndBackIsExact) {
   }
 }
 
+// The jet (value and derivatives to second order from one Legendre table) equals the separate
+// point evaluations.
+TEST(SHTransform, JetMatchesPointEvaluations) {
+  const SHCoeffs c = random_coeffs(12, 3, 7);
+  for (auto [t, ph] : {std::pair{0.01, 0.2}, {1.1, 3.0}, {2.9, 6.1}}) {
+    const SHJet j = sh_evaluate_jet(c, t, ph);
+    const std::pair<const Eigen::Vector3d*, std::pair<int, int>> parts[] = {
+        {&j.x, {0, 0}}, {&j.x_t, {1, 0}}, {&j.x_p, {0, 1}}, {&j.x_tt, {2, 0}}, {&j.x_tp, {1, 1}}, {&j.x_pp, {0, 2}}};
+    for (const auto& [value, d] : parts) {
+      const Eigen::Vector3d expected = sh_evaluate(c, t, ph, d.first, d.second).transpose();
+      EXPECT_LT((*value - expected).norm(), 1e-12 * (1.0 + expected.norm()))
+          << "d/dtheta^" << d.first << " d/dphi^" << d.second << " at " << t << ", " << ph;
+    }
+  }
+}
+
 TEST(SHCoeffs, SpectrumSumsSquaresPerDegree) {
   SHCoeffs c(4, 3);
   c.a(2, 1, 0) = 3.0;
