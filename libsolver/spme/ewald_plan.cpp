@@ -1,6 +1,7 @@
 #include "ewald_plan.h"
 
 #include <chrono>
+#include <cstdint>
 
 #include "real_space_sum.h"
 
@@ -12,7 +13,14 @@ double seconds_between(std::chrono::steady_clock::time_point a,
   return std::chrono::duration<double>(b - a).count();
 }
 
+// Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 0.8 GB).
+constexpr std::int64_t kMaxKeptPairs = 50'000'000;
+
 }  // namespace
+
+std::vector<double>* EwaldPlan::kept(std::vector<double>& coefficients) const {
+  return neighbors_.n_pairs() <= kMaxKeptPairs ? &coefficients : nullptr;
+}
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
                      const PointField& targets)
@@ -26,7 +34,7 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& poi
 PointField EwaldPlan::single_layer(const PointField& forces) {
   PointField u = smooth_.single_layer(forces);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_single_layer(neighbors_, xi(), forces);
+  u += real_space_single_layer(neighbors_, xi(), forces, kept(single_coefficients_));
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
@@ -42,7 +50,7 @@ PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   PointField u = smooth_.double_layer(q, normals);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_double_layer(neighbors_, xi(), q, normals);
+  u += real_space_double_layer(neighbors_, xi(), q, normals, kept(double_coefficients_));
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;

@@ -21,8 +21,11 @@
 // such a target therefore depends on xi; adding ewald_real_stokeslet_self(xi) f_t gives the
 // xi-independent regular part (the double layer needs nothing: lim T^R - T = 0).
 //
+// The real-space kernel coefficients of every pair are kept from the first product of each
+// layer (real_space_sum.h; up to 5e7 pairs), so later products cost a few flops per pair.
 // Products modify work arrays: one thread at a time per plan; each product is OpenMP-parallel.
 #include <memory>
+#include <vector>
 
 #include "neighbor_list.h"
 #include "periodic_box.h"
@@ -59,8 +62,11 @@ class EwaldPlan {
   const EwaldTimings& timings() const { return timings_; }
 
  private:
+  std::vector<double>* kept(std::vector<double>& coefficients) const;
+
   NeighborList neighbors_;
   SpmePlan smooth_;
+  std::vector<double> single_coefficients_, double_coefficients_;
   EwaldTimings timings_;
 };
 

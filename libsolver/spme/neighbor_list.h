@@ -37,14 +37,19 @@ class NeighborList {
   // Calls f(sorted source index, r) for every pair of the caller's target t, r = x_s + n L - x_t.
   template <class F>
   void for_each_neighbor(int t, F&& f) const {
+    for_each_pair(t, [&](std::int64_t, int s, const Eigen::Vector3d& r) { f(s, r); });
+  }
+  // The same with the pair's index in [0, n_pairs()) first (for data kept per pair).
+  template <class F>
+  void for_each_pair(int t, F&& f) const {
     const std::size_t k = static_cast<std::size_t>(rank_[t]);
     const double* xt = &targets_[3 * k];
     for (std::int64_t i = offsets_[k]; i < offsets_[k + 1]; ++i) {
       const int s = pair_source_[i];
       const double* xs = &sources_[3 * static_cast<std::size_t>(s)];
       const double* shift = &image_shifts_[3 * static_cast<std::size_t>(pair_image_[i])];
-      f(s, Eigen::Vector3d(xs[0] + shift[0] - xt[0], xs[1] + shift[1] - xt[1],
-                           xs[2] + shift[2] - xt[2]));
+      f(i, s, Eigen::Vector3d(xs[0] + shift[0] - xt[0], xs[1] + shift[1] - xt[1],
+                              xs[2] + shift[2] - xt[2]));
     }
   }
 

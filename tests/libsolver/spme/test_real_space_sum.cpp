@@ -32,6 +32,28 @@ TEST(RealSpaceSum, MatchesBruteForce) {
   }
 }
 
+// Kept pair coefficients: the product that fills them and every later product (other
+// densities, the same list) equal the brute-force sums.
+TEST(RealSpaceSum, KeptCoefficientsGiveTheSameSums) {
+  const Eigen::Vector3d L(1.0, 0.7, 1.2);
+  const PeriodicBox box(L);
+  const double xi = 4.0, cutoff = 0.6;
+  const PointField xs = random_points(150, L, 11), xt = random_points(60, L, 12);
+  const EwaldDirect direct(box, xi, cutoff, 1.0);
+  const NeighborList pairs(box, cutoff, xs, xt);
+  std::vector<double> single, double_;
+  for (unsigned seed : {21u, 22u, 23u}) {
+    const PointField f = random_vectors(150, seed), q = random_vectors(150, seed + 10),
+                     n = random_unit_vectors(150, seed + 20);
+    const PointField s_ref = direct.real_single_layer(xs, f, xt);
+    EXPECT_LT((real_space_single_layer(pairs, xi, f, &single) - s_ref).norm(), 1e-12 * s_ref.norm());
+    const PointField d_ref = direct.real_double_layer(xs, q, n, xt);
+    EXPECT_LT((real_space_double_layer(pairs, xi, q, n, &double_) - d_ref).norm(), 1e-12 * d_ref.norm());
+    EXPECT_EQ(single.size(), 2 * static_cast<std::size_t>(pairs.n_pairs()));
+    EXPECT_EQ(double_.size(), 2 * static_cast<std::size_t>(pairs.n_pairs()));
+  }
+}
+
 TEST(RealSpaceSum, RejectsMismatchedDensities) {
   const PeriodicBox box(Eigen::Vector3d::Ones());
   const PointField x = random_points(10, Eigen::Vector3d::Ones(), 1);
