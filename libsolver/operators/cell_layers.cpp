@@ -1,6 +1,7 @@
 #include "cell_layers.h"
 
 #include <stdexcept>
+#include <tuple>
 
 #include "libsolver/spme/double_layer_linear.h"
 #include "near_targets.h"
@@ -46,9 +47,11 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
 #pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
     const auto targets = cells_[c]->node_targets();
-    self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
     if (with_double_layer) {
-      self_double_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, targets);
+      std::tie(self_single_[c], self_double_[c]) =
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets);
+    } else {
+      self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
     }
   }
   self_timer.stop();
@@ -59,11 +62,12 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
     near_[c].rows = std::move(near.rows);
     const std::vector<QuadratureTarget>& near_targets = near.targets;
-    if (!near_targets.empty()) {
+    if (near_targets.empty()) continue;
+    if (with_double_layer) {
+      std::tie(near_[c].single, near_[c].double_) =
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, near_targets);
+    } else {
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, near_targets);
-      if (with_double_layer) {
-        near_[c].double_ = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::double_, xi_double}, near_targets);
-      }
     }
   }
 }

@@ -1,6 +1,7 @@
 #include "cell_layers_at_points.h"
 
 #include <stdexcept>
+#include <tuple>
 
 #include "libsolver/quadrature/regular_quadrature.h"
 #include "libsolver/spme/double_layer_linear.h"
@@ -31,11 +32,12 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     NearTargets near = find_near_targets(layers.cell(c), points_, domain.box);
     if (near.targets.empty()) continue;
     near_[c].rows = std::move(near.rows);
-    near_[c].single = std::make_unique<LayerCorrection>(layers.cell_geometry(c), LayerKernel{Layer::single, xi_single},
-                                                        near.targets);
     if (with_double) {
-      near_[c].double_ = std::make_unique<LayerCorrection>(layers.cell_geometry(c),
-                                                           LayerKernel{Layer::double_, xi_double}, near.targets);
+      std::tie(near_[c].single, near_[c].double_) =
+          LayerCorrection::single_and_double(layers.cell_geometry(c), xi_single, xi_double, near.targets);
+    } else {
+      near_[c].single = std::make_unique<LayerCorrection>(layers.cell_geometry(c), LayerKernel{Layer::single, xi_single},
+                                                          near.targets);
     }
   }
 }

@@ -27,9 +27,9 @@ HermiteInterpolator::HermiteInterpolator(int order, int refinement) {
   dphi_ = 2 * std::numbers::pi / n_phi;
 }
 
-Eigen::MatrixXd HermiteInterpolator::node_data(const SHCoeffs& c) const {
+HermiteData HermiteInterpolator::node_data(const SHCoeffs& c) const {
   const int k = c.components();
-  Eigen::MatrixXd data(transform_->grid().size(), 4 * k);
+  HermiteData data(transform_->grid().size(), 4 * k);
   const int derivs[4][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
   for (int d = 0; d < 4; ++d) {
     const Eigen::MatrixXd v = transform_->synthesize(c, derivs[d][0], derivs[d][1]);

@@ -12,6 +12,11 @@
 
 namespace rbcflow {
 
+// Node data, one row per grid node: column 4 c + d for component c and data type d = value,
+// d/dtheta, d/dphi, d2/dtheta dphi. Row-major, so that the 4 k numbers a stencil corner reads
+// are contiguous.
+using HermiteData = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 // Where a point (theta, phi) falls on the uniform grid, with its 16 Hermite weights.
 struct HermiteStencil {
   int cell = 0;                       // i * n_phi + j of the cell's (theta_i, phi_j) corner
@@ -27,25 +32,24 @@ class HermiteInterpolator {
   int n_theta() const { return transform_->grid().n_theta(); }
   int n_phi() const { return transform_->grid().n_phi(); }
 
-  // Node data of an expansion: (grid size x 4 k), column 4 c + d for component c and data
-  // type d = value, d/dtheta, d/dphi, d2/dtheta dphi.
-  Eigen::MatrixXd node_data(const SHCoeffs& c) const;
+  // Node data of an expansion (grid size x 4 k).
+  HermiteData node_data(const SHCoeffs& c) const;
 
   HermiteStencil stencil(double theta, double phi) const;
 
   // Interpolated components at a stencil (k = data.cols() / 4 values).
   template <typename Out>
-  void interpolate(const Eigen::MatrixXd& data, const HermiteStencil& s, Out&& out) const {
+  void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out) const {
     const int k = static_cast<int>(data.cols() / 4);
     const int i = s.cell / n_phi(), j = s.cell % n_phi();
     const int nodes[4] = {i * n_phi() + j, i * n_phi() + (j + 1) % n_phi(), (i + 1) * n_phi() + j,
                           (i + 1) * n_phi() + (j + 1) % n_phi()};
-    for (int c = 0; c < k; ++c) {
-      double v = 0.0;
-      for (int corner = 0; corner < 4; ++corner) {
-        for (int d = 0; d < 4; ++d) v += s.weights[4 * corner + d] * data(nodes[corner], 4 * c + d);
-      }
-      out[c] = v;
+    for (int c = 0; c < k; ++c) out[c] = 0.0;
+    for (int corner = 0; corner < 4; ++corner) {
+      const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();
+      const double* w = &s.weights[4 * corner];
+      for (int c = 0; c < k; ++c)
+        out[c] += w[0] * row[4 * c] + w[1] * row[4 * c + 1] + w[2] * row[4 * c + 2] + w[3] * row[4 * c + 3];
     }
   }
 

@@ -14,6 +14,10 @@ std::array<double, 6> pack(const Eigen::Matrix3d& k) {
   return {k(0, 0), k(0, 1), k(0, 2), k(1, 1), k(1, 2), k(2, 2)};
 }
 
+Eigen::Vector3d unit_direction(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
 Eigen::Vector3d times(const std::array<double, 6>& k, const Eigen::Vector3d& v) {
   return {k[0] * v[0] + k[1] * v[1] + k[2] * v[2], k[1] * v[0] + k[3] * v[1] + k[4] * v[2],
           k[2] * v[0] + k[4] * v[1] + k[5] * v[2]};
@@ -89,53 +93,88 @@ void CellQuadratureGeometry::geometry_at(double theta, double phi, Eigen::Vector
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
                                  std::vector<QuadratureTarget> targets)
-    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)) {
-  const QuadratureOptions& o = cell_->options();
-  const int N = cell_->grids().order;
+    : LayerCorrection(std::move(cell), kernel, std::move(targets), Unbuilt{}) {
+  LayerCorrection* self = this;
+  build({&self, 1});
+}
+
+LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
+                                 std::vector<QuadratureTarget> targets, Unbuilt)
+    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)) {}
+
+std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> LayerCorrection::single_and_double(
+    const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
+    const std::vector<QuadratureTarget>& targets) {
+  std::unique_ptr<LayerCorrection> single(new LayerCorrection(cell, LayerKernel{Layer::single, xi_single}, targets, Unbuilt{}));
+  std::unique_ptr<LayerCorrection> double_(new LayerCorrection(cell, LayerKernel{Layer::double_, xi_double}, targets, Unbuilt{}));
+  LayerCorrection* both[2] = {single.get(), double_.get()};
+  build(both);
+  return {std::move(single), std::move(double_)};
+}
+
+void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
+  const LayerCorrection& first = *corrections[0];
+  const CellQuadratureGeometry& cell = *first.cell_;
+  const QuadratureOptions& o = cell.options();
+  const int N = cell.grids().order;
   const int n_rho = o.radial_points > 0 ? o.radial_points : default_radial_points(N);
   const int n_varphi = o.angular_points > 0 ? o.angular_points : 2 * n_rho;
-  const double rho1 = cell_->patch_radius();
-  const SphGrid& grid = cell_->grids().n_grid->grid();
-  const SourceNodes& nodes = cell_->nodes();
-  const bool single = kernel_.layer == Layer::single;
-  patch_.resize(targets_.size());
-  nodes_.resize(targets_.size());
+  const double rho1 = cell.patch_radius(), cos_rho1 = std::cos(rho1);
+  const SphGrid& grid = cell.grids().n_grid->grid();
+  const SourceNodes& nodes = cell.nodes();
+  const std::vector<QuadratureTarget>& targets = first.targets_;
+  // Directions of the grid nodes on the parameter sphere: a node is in a target's patch when
+  // u_node . u_target > cos(rho_1), which needs no trigonometry per (target, node) pair.
+  Eigen::MatrixXd u(grid.size(), 3);
+  for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
+  for (LayerCorrection* c : corrections) {
+    c->patch_.resize(targets.size());
+    c->nodes_.resize(targets.size());
+  }
 
 #pragma omp parallel for schedule(dynamic, 4)
-  for (int t = 0; t < num_targets(); ++t) {
-    const QuadratureTarget& target = targets_[t];
+  for (int t = 0; t < static_cast<int>(targets.size()); ++t) {
+    const QuadratureTarget& target = targets[t];
     // The patch centre as the interpolant sees it: r = x_q - x0 is measured from it so that
     // the kernel's singularity sits exactly at rho = 0 (an offset of the interpolation error
     // would spoil r . n ~ rho^2 in the double layer). Off-surface targets keep their offset.
     Eigen::Vector3d xc, jc;
-    cell_->geometry_at(target.theta, target.phi, xc, jc);
+    cell.geometry_at(target.theta, target.phi, xc, jc);
     const Eigen::Vector3d x0 = target.self_node >= 0 ? xc : Eigen::Vector3d(target.x);
     // Parametric distance of an off-surface target: distance over the local length scale.
     const double delta = target.distance > 0 ? target.distance / std::sqrt(jc.norm()) : 0.0;
     const std::vector<PatchPoint> pts = polar_patch(target.theta, target.phi, rho1, n_rho, n_varphi, delta);
-    auto& patch = patch_[t];
-    patch.reserve(pts.size());
+    for (LayerCorrection* c : corrections) c->patch_[t].reserve(pts.size());
     for (const PatchPoint& q : pts) {
       if (q.weight == 0.0) continue;
       Eigen::Vector3d xq, jn;
-      cell_->geometry_at(q.theta, q.phi, xq, jn);
+      cell.geometry_at(q.theta, q.phi, xq, jn);
       const Eigen::Vector3d r = xq - x0;
-      const Eigen::Matrix3d k = single ? Eigen::Matrix3d(kernel_.matrix(r, jn) * (jn.norm() * q.weight))
-                                       : Eigen::Matrix3d(kernel_.matrix(r, jn * q.weight));
-      patch.push_back({q.theta, q.phi, pack(k)});
+      for (LayerCorrection* c : corrections) {
+        const bool single = c->kernel_.layer == Layer::single;
+        const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * q.weight))
+                                         : Eigen::Matrix3d(c->kernel_.matrix(r, jn * q.weight));
+        c->patch_[t].push_back({q.theta, q.phi, pack(k)});
+      }
     }
     // The regular rule's share of the patch, eta K w at the nodes inside it, is removed.
+    const Eigen::Vector3d ut = unit_direction(target.theta, target.phi);
     for (int p = 0; p < grid.size(); ++p) {
       if (p == target.self_node) continue;
-      const double rho = great_circle_distance(target.theta, target.phi, grid.theta()[p / grid.n_phi()],
-                                               grid.phi(p % grid.n_phi()));
+      const Eigen::Vector3d up = u.row(p).transpose();
+      const double cos_rho = ut.dot(up);
+      if (cos_rho <= cos_rho1) continue;
+      const double rho = std::atan2(ut.cross(up).norm(), cos_rho);
       if (rho >= rho1) continue;
       const double eta = patch_mask(rho, rho1);
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
-      const Eigen::Matrix3d k = single ? Eigen::Matrix3d(kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
-                                       : Eigen::Matrix3d(kernel_.matrix(r, m) * (-eta));
-      nodes_[t].push_back({p, pack(k)});
+      for (LayerCorrection* c : corrections) {
+        const bool single = c->kernel_.layer == Layer::single;
+        const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
+                                         : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));
+        c->nodes_[t].push_back({p, pack(k)});
+      }
     }
   }
 }
@@ -156,7 +195,7 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHC
   }
   const bool spectral = cell_->options().spectral_interpolation;
   const HermiteInterpolator& interp = cell_->interpolator();
-  const Eigen::MatrixXd data = spectral ? Eigen::MatrixXd() : interp.node_data(c);
+  const HermiteData data = spectral ? HermiteData() : interp.node_data(c);
   Eigen::MatrixXd out(num_targets(), 3);
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {

@@ -15,6 +15,8 @@
 // GMRES product calls.
 #include <Eigen/Core>
 #include <memory>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "geometry/cell_grids.h"
@@ -70,7 +72,7 @@ class CellQuadratureGeometry {
   QuadratureOptions options_;
   SourceNodes nodes_;
   std::shared_ptr<const HermiteInterpolator> interp_;
-  Eigen::MatrixXd x_data_, jn_data_;
+  HermiteData x_data_, jn_data_;
   double rho1_ = 0, h_ = 0, near_ = 0;
 };
 
@@ -78,6 +80,11 @@ class LayerCorrection {
  public:
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
                   std::vector<QuadratureTarget> targets);
+  // The single- and double-layer corrections of the same targets, built together: the patch
+  // geometry (points, interpolated x and J n, the regular rule's nodes inside) is computed once.
+  static std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> single_and_double(
+      const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
+      const std::vector<QuadratureTarget>& targets);
 
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
@@ -89,6 +96,12 @@ class LayerCorrection {
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const SHCoeffs& patch_density) const;
 
  private:
+  struct Unbuilt {};
+  LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
+                  std::vector<QuadratureTarget> targets, Unbuilt);
+  // Fills patch_ and nodes_ of corrections that share their cell and targets.
+  static void build(std::span<LayerCorrection* const> corrections);
+
   struct PatchEntry {
     double theta, phi;
     std::array<double, 6> k;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz

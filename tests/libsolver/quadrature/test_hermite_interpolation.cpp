@@ -21,7 +21,7 @@ TEST(HermiteInterpolation, ConvergesAtFourthOrderEverywhereIncludingThePoles) {
   std::printf("  refinement  max error\n");
   for (int r : {2, 4, 8}) {
     const HermiteInterpolator interp(N, r);
-    const Eigen::MatrixXd data = interp.node_data(c);
+    const HermiteData data = interp.node_data(c);
     double err = 0.0;
     for (auto [t, p] : pts) {
       Eigen::Vector2d v;
@@ -40,7 +40,7 @@ TEST(HermiteInterpolation, ReproducesNodeValues) {
   SHCoeffs c(6, 1);
   c.a(3, 2) = 1.0;
   const HermiteInterpolator interp(6, 2);
-  const Eigen::MatrixXd data = interp.node_data(c);
+  const HermiteData data = interp.node_data(c);
   Eigen::Matrix<double, 1, 1> v;
   const double dtheta = 3.14159265358979323846 / (interp.n_theta() - 1);
   interp.interpolate(data, interp.stencil(5 * dtheta, 0.0), v);
