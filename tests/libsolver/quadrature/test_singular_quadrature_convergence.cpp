@@ -28,3 +28,25 @@ TEST(SingularQuadratureConvergence, Figure3IdentitiesOnTheSqueezedEllipsoid) {
   EXPECT_GE(order_s, 3.0);
   EXPECT_GE(order_d, 3.0);
 }
+
+// The same with the periodic Ewald sums (box of side 6, tolerance 1e-10) for N = 8 .. 32.
+TEST(SingularQuadratureConvergence, Figure3IdentitiesWithEwaldSums) {
+  const PeriodicBox box(Eigen::Vector3d::Constant(6.0));
+  std::printf("   N    single layer (38)   double layer (39)   (Ewald, box 6)\n");
+  std::vector<double> e_single, e_double;
+  for (int N : {8, 12, 16, 24, 32}) {
+    SHSurface s = make_squeezed_ellipsoid(N, squeezed_ellipsoid_default_rotation());
+    s.translate(Eigen::Vector3d(2.9, 3.1, 3.0));
+    const auto e = quadrature_test::section8_identity_errors_periodic(s, N, quadrature_test::accurate_options(), box, 1e-10);
+    std::printf("  %2d    %.3e           %.3e\n", N, e.single, e.double_);
+    e_single.push_back(e.single);
+    e_double.push_back(e.double_);
+  }
+  EXPECT_LT(e_single.back(), 1e-5);
+  EXPECT_LT(e_double.back(), 1e-5);
+  const double order_s = std::log(e_single[2] / e_single[4]) / std::log(32.0 / 16.0);
+  const double order_d = std::log(e_double[2] / e_double[4]) / std::log(32.0 / 16.0);
+  std::printf("  order 16 -> 32: single %.2f, double %.2f\n", order_s, order_d);
+  EXPECT_GE(order_s, 3.0);
+  EXPECT_GE(order_d, 3.0);
+}
