@@ -91,13 +91,16 @@ struct TubeRun {
 
 // A run at tube velocity `target` (<u> = target / ratio) for at most `steps` steps of dt. The
 // change of mu_rel over the last `steady_window` (time) measures how steady the end is. With
-// steady_slip > 0 the run stops once the slip is below it (and a window has passed).
+// steady_slip > 0 the run stops once the slip is below it and the change of mu_rel over the
+// last window below `steady_change`.
 inline TubeRun run_tube(const std::shared_ptr<const WallElements>& wall, double mu_free, double ratio, int N, int M,
                         double target, double dt, long steps, double steady_window, long print_every,
-                        double steady_slip = 0.0) {
+                        double steady_slip = 0.0, double steady_change = 0.0, bool volume_constraint = false) {
   const auto start = std::chrono::steady_clock::now();
   auto grids = CellGrids::make(N, M);
-  CellStepper stepper({red_cell(N, grids, kAxisPoint)}, grids, tube_options(wall, target / ratio, dt));
+  CellStepperOptions options = tube_options(wall, target / ratio, dt);
+  options.volume_constraint = volume_constraint;
+  CellStepper stepper({red_cell(N, grids, kAxisPoint)}, grids, options);
   TubeRun r;
   r.target = target;
   const Eigen::MatrixXd x0 = cell_nodes(stepper);
@@ -145,7 +148,8 @@ inline TubeRun run_tube(const std::shared_ptr<const WallElements>& wall, double 
                    .sqrt()
                    .maxCoeff();
     r.steps = n;
-    const bool steady = steady_slip > 0 && r.slip < steady_slip && n > window;
+    const bool steady = steady_slip > 0 && r.slip < steady_slip && n > window &&
+                        std::abs(mu_rel - history[history.size() - 1 - window]) < steady_change;
     if (n % print_every == 0 || n == steps || steady) {
       std::printf("  %4ld  %.4f  %.5f      %.3f   %.2e  %.2e  %.3f   %.3f   %+.2e  %d / %d          %.0f\n", n,
                   stepper.time(), mu_rel, r.tube_velocity, r.max_offset, r.slip, r.length, r.radius,

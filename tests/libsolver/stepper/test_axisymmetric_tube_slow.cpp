@@ -2,15 +2,23 @@
 // a red cell on the axis of a D = 3.2 tube, one per period 2, lambda = 5, membrane (35),
 // N = 8 with factor-three de-aliasing (M = 24), wall h = 0.3, at the paper's tube velocities
 // 0.62, 1.25, 2.52, 5.09 and 7.66, each from the resting cell with dt half the limit (37)
-// until steady: the membrane's motion relative to the centroid (max over the nodes of
-// |u - u_mean| / |u_mean|; zero for the pure translation of the steady state) below 2%, at
-// most to t = 8. The change of mu_eff over the last 0.25 time units is what is left of the
-// transient.
-// Measured before the stop criterion (fixed t = 2): at U = 0.62 mu_eff / mu_0 rose from 1.385
-// to a peak 1.652 at t = 1.4 and was 1.637 at t = 1.82, slip still 0.115: not steady at t = 2.
-// The curve mu_eff / mu_0 (mu_0: the cell-free tube on the same wall) against the tube
-// velocity is printed; it must lie above 1 and decrease with the flow rate (shear thinning),
-// by more at each step than what is left of the transient.
+// and the volume constraint of section 10.2, until steady: the membrane's motion relative to
+// the centroid (max over the nodes of |u - u_mean| / |u_mean|; zero for the pure translation
+// of the steady state) below 2% AND mu_eff / mu_0 changed by less than 2e-3 over the last 0.25
+// time units, at most to t = 8.
+// Measured with the slip criterion alone and no volume constraint (commit 93e684b, 2,984 s on
+// 1 thread beside other jobs; cell-free mu_eff = 1.00026):
+//   U target  U_tube  mu_eff/mu_0  change over last 0.25  t at stop  steps  max |V/V0 - 1|
+//   0.62      0.590   1.52732      3.2e-3                 6.17       2201   1.9e-3
+//   1.25      1.227   1.43724      8.3e-3                 3.63       1297   3.7e-3
+//   2.52      2.546   1.35577      2.4e-2                 2.18        778   6.6e-3
+//   5.09      5.275   1.28569      5.1e-2                 1.24        441   8.0e-3
+//   7.66      8.111   1.22770      9.9e-2                 0.91        325   9.0e-3
+// decreasing at every step, but the test failed: at the fast flows the slip (relative to the
+// large translation speed) falls below 2% long before mu_eff settles (still -0.1 per 0.25 at
+// U = 7.66), so the 5.09 -> 7.66 step (0.058) was smaller than the transient left; and the
+// unconstrained volume drift grew with U towards the 1% limit. Hence the mu_eff criterion and
+// the volume constraint, which have NOT yet been run to completion (estimated ~1 h on 1 thread).
 #include <gtest/gtest.h>
 
 #include "axisymmetric_tube_support.h"
@@ -20,7 +28,7 @@ using namespace rbcflow::tube_test;
 
 namespace {
 constexpr int kN = 8, kM = 24;
-constexpr double kElementSize = 0.3, kMaxEnd = 8.0, kWindow = 0.25, kSteadySlip = 0.02;
+constexpr double kElementSize = 0.3, kMaxEnd = 8.0, kWindow = 0.25, kSteadySlip = 0.02, kSteadyChange = 2e-3;
 }  // namespace
 
 TEST(AxisymmetricTubeSlow, EffectiveViscosityDecreasesWithFlowRate) {
@@ -33,13 +41,14 @@ TEST(AxisymmetricTubeSlow, EffectiveViscosityDecreasesWithFlowRate) {
               wall->num_triangles(), mu_free, ratio);
   std::vector<TubeRun> runs;
   for (const double U : {0.62, 1.25, 2.52, 5.09, 7.66}) {
-    runs.push_back(run_tube(wall, mu_free, ratio, kN, kM, U, dt, steps, kWindow, 100, kSteadySlip));
+    runs.push_back(run_tube(wall, mu_free, ratio, kN, kM, U, dt, steps, kWindow, 100, kSteadySlip, kSteadyChange, true));
     const TubeRun& r = runs.back();
     ASSERT_FALSE(r.blew_up) << r.error;
     EXPECT_TRUE(r.finite);
     EXPECT_LT(r.max_offset, 1e-2) << "the cell should stay on the axis";
-    EXPECT_LT(r.max_volume_error, 1e-2);
+    EXPECT_LT(r.max_volume_error, 1e-4);  // constrained
     EXPECT_LT(r.slip, kSteadySlip) << "not steady by t = " << kMaxEnd << " at U = " << U;
+    EXPECT_LT(r.mu_rel_change, kSteadyChange) << "mu_eff not steady by t = " << kMaxEnd << " at U = " << U;
   }
   std::printf("  target U  U_tube  mu_eff/mu_0  change over last %.2f  slip      length  radius  t      steps  s\n",
               kWindow);
