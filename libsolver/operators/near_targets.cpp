@@ -1,5 +1,10 @@
 #include "near_targets.h"
 
+#include <memory>
+#include <numbers>
+
+#include "geometry/aabb_tree.h"
+#include "geometry/sh_surface.h"
 #include "geometry/surface_projection.h"
 
 namespace rbcflow {
@@ -12,6 +17,10 @@ NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::M
   const Eigen::Vector3d lo = nodes.x.colwise().minCoeff(), hi = nodes.x.colwise().maxCoeff();
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   const SphGrid& grid = cell.grids().n_grid->grid();
+  // The projection's seed: the vertex nearest the closest point of the grid triangulation,
+  // from an AABB tree built when the first point comes within the bounding box.
+  TriangleMesh mesh;
+  std::unique_ptr<TriangleAabbTree> tree;
   for (int r = 0; r < points.rows(); ++r) {
     if (r >= skip_begin && r < skip_end) continue;
     Eigen::Vector3d x0 = points.row(r).transpose();
@@ -20,11 +29,21 @@ NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::M
       x0 -= (L.array() * ((x0 - centre).array() / L.array()).round()).matrix();
     }
     if (((x0 - lo).array() < -near).any() || ((x0 - hi).array() > near).any()) continue;
-    Eigen::Index nearest = 0;
-    (nodes.x.rowwise() - x0.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-    const int q = static_cast<int>(nearest);
-    const SurfaceProjection proj =
-        project_onto_surface(cell.coeffs(), x0, grid.theta()[q / grid.n_phi()], grid.phi(q % grid.n_phi()));
+    if (!tree) {
+      mesh = SHSurface(cell.coeffs()).triangulate(*cell.grids().n_grid);
+      tree = std::make_unique<TriangleAabbTree>(mesh);
+    }
+    const TriangleAabbTree::ClosestPoint closest = tree->closest_point(x0);
+    if (closest.distance >= near + cell.mesh_size()) continue;  // the chords lie within h of the surface
+    int seed = mesh.triangles(closest.triangle, 0);
+    for (int k = 1; k < 3; ++k) {
+      const int v = mesh.triangles(closest.triangle, k);
+      if ((mesh.points.row(v).transpose() - x0).squaredNorm() < (mesh.points.row(seed).transpose() - x0).squaredNorm()) seed = v;
+    }
+    // Vertices past the grid are the poles (SHSurface::triangulate).
+    const double theta0 = seed < grid.size() ? grid.theta()[seed / grid.n_phi()] : (seed == grid.size() ? 0.0 : std::numbers::pi);
+    const double phi0 = seed < grid.size() ? grid.phi(seed % grid.n_phi()) : 0.0;
+    const SurfaceProjection proj = project_onto_surface(cell.coeffs(), x0, theta0, phi0);
     if (proj.distance >= near) continue;
     QuadratureTarget t;
     t.x = x0;

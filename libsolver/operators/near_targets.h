@@ -1,7 +1,8 @@
 #pragma once
 // The points that are nearly singular for one cell's layer integrals: those closer than the
 // cell's near distance (d < near_factor sqrt(h), section 5.4) to its surface, each with its
-// projection onto the surface (Newton on the spectral surface from the nearest grid node),
+// projection onto the surface (Newton on the spectral surface, seeded by the closest point of
+// the grid triangulation from a CGAL AABB tree),
 // the centre of the floating partition of unity. In a periodic box each point is taken at
 // its periodic image nearest the cell.
 #include <Eigen/Core>
