@@ -17,13 +17,6 @@ double patch_mask(double rho, double rho1) {
   return std::exp(2.0 * std::exp(-1.0 / t) / (t - 1.0));
 }
 
-double great_circle_distance(double theta1, double phi1, double theta2, double phi2) {
-  // Haversine-free but accurate form: atan2(|u1 x u2|, u1 . u2).
-  const Eigen::Vector3d u1(std::sin(theta1) * std::cos(phi1), std::sin(theta1) * std::sin(phi1), std::cos(theta1));
-  const Eigen::Vector3d u2(std::sin(theta2) * std::cos(phi2), std::sin(theta2) * std::sin(phi2), std::cos(theta2));
-  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
-}
-
 std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int n_rho, int n_varphi,
                                     double delta) {
   if (rho1 <= 0 || rho1 > std::numbers::pi || n_rho < 1 || n_varphi < 1 || delta < 0) {

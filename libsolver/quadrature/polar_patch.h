@@ -21,7 +21,4 @@ struct PatchPoint {
 std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int n_rho, int n_varphi,
                                     double delta = 0.0);
 
-// Great-circle distance between two points of the unit sphere given by their parameters.
-double great_circle_distance(double theta1, double phi1, double theta2, double phi2);
-
 }  // namespace rbcflow

@@ -23,8 +23,8 @@ class WallOperator {
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets);
   // Periodic box; the Ewald parameters are chosen for `ewald_tolerance` (ewald_parameters.h),
   // the grid taken from `grid_cache` when given (spme_grid_cache.h). `real_space` says whether
-  // the real-space sum is evaluated at every product or assembled once (assemble_real_space();
-  // the choice then favours a large cutoff and a coarse grid, at a tenth of the tolerance:
+  // the real-space sum is evaluated at every product or assembled once as a sparse matrix (for
+  // an operator applied many times, the wall solve; the choice then favours a large cutoff and a coarse grid, at a tenth of the tolerance:
   // kAssembledRealSpace and kAssembledToleranceFactor in wall_real_space.h).
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,

@@ -2,10 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
 
 using namespace rbcflow;
+
+namespace {
+// Great-circle distance between two points of the unit sphere given by their parameters.
+double great_circle_distance(double theta1, double phi1, double theta2, double phi2) {
+  // Haversine-free but accurate form: atan2(|u1 x u2|, u1 . u2).
+  const Eigen::Vector3d u1(std::sin(theta1) * std::cos(phi1), std::sin(theta1) * std::sin(phi1), std::cos(theta1));
+  const Eigen::Vector3d u2(std::sin(theta2) * std::cos(phi2), std::sin(theta2) * std::sin(phi2), std::cos(theta2));
+  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
+}
+}  // namespace
 
 TEST(PolarPatch, MaskIsOneAtCentreZeroAtEdgeAndMonotone) {
   EXPECT_DOUBLE_EQ(patch_mask(0.0, 0.5), 1.0);
