@@ -137,4 +137,15 @@ TriangleMesh SHSurface::triangulate(const SHTransform& t) const {
   return mesh;
 }
 
+Eigen::Vector2d triangulation_seed(const TriangleMesh& mesh, const SphGrid& grid, int triangle, const Eigen::Vector3d& x) {
+  int seed = mesh.triangles(triangle, 0);
+  for (int k = 1; k < 3; ++k) {
+    const int v = mesh.triangles(triangle, k);
+    if ((mesh.points.row(v).transpose() - x).squaredNorm() < (mesh.points.row(seed).transpose() - x).squaredNorm()) seed = v;
+  }
+  if (seed == grid.size()) return {0.0, 0.0};
+  if (seed == grid.size() + 1) return {std::numbers::pi, 0.0};
+  return {grid.theta()[seed / grid.n_phi()], grid.phi(seed % grid.n_phi())};
+}
+
 }  // namespace rbcflow

@@ -68,4 +68,9 @@ class SHSurface {
   SHCoeffs x_;
 };
 
+// A seed for project_onto_surface from a closest point on SHSurface::triangulate's mesh of
+// `grid`: the (theta, phi) of the vertex of `triangle` nearest x (the poles are the last two
+// vertices).
+Eigen::Vector2d triangulation_seed(const TriangleMesh& mesh, const SphGrid& grid, int triangle, const Eigen::Vector3d& x);
+
 }  // namespace rbcflow

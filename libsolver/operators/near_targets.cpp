@@ -1,7 +1,6 @@
 #include "near_targets.h"
 
 #include <memory>
-#include <numbers>
 
 #include "geometry/aabb_tree.h"
 #include "geometry/sh_surface.h"
@@ -35,15 +34,8 @@ NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::M
     }
     const TriangleAabbTree::ClosestPoint closest = tree->closest_point(x0);
     if (closest.distance >= near + cell.mesh_size()) continue;  // the chords lie within h of the surface
-    int seed = mesh.triangles(closest.triangle, 0);
-    for (int k = 1; k < 3; ++k) {
-      const int v = mesh.triangles(closest.triangle, k);
-      if ((mesh.points.row(v).transpose() - x0).squaredNorm() < (mesh.points.row(seed).transpose() - x0).squaredNorm()) seed = v;
-    }
-    // Vertices past the grid are the poles (SHSurface::triangulate).
-    const double theta0 = seed < grid.size() ? grid.theta()[seed / grid.n_phi()] : (seed == grid.size() ? 0.0 : std::numbers::pi);
-    const double phi0 = seed < grid.size() ? grid.phi(seed % grid.n_phi()) : 0.0;
-    const SurfaceProjection proj = project_onto_surface(cell.coeffs(), x0, theta0, phi0);
+    const Eigen::Vector2d seed = triangulation_seed(mesh, grid, closest.triangle, x0);
+    const SurfaceProjection proj = project_onto_surface(cell.coeffs(), x0, seed[0], seed[1]);
     if (proj.distance >= near) continue;
     QuadratureTarget t;
     t.x = x0;

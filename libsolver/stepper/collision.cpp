@@ -45,13 +45,6 @@ struct Neighbour {
   int pair = 0;
 };
 
-// (theta, phi) of vertex v of SHSurface::triangulate on grid g (the two poles come last).
-Eigen::Vector2d vertex_angles(const SphGrid& g, int v) {
-  if (v == g.size()) return {0.0, 0.0};
-  if (v == g.size() + 1) return {std::numbers::pi, 0.0};
-  return {g.theta()[v / g.n_phi()], g.phi(v % g.n_phi())};
-}
-
 // Pushes the points of cell `a` away from cell `b` translated by `offset` (a periodic image):
 // each point within h_s of b moves half of the missing separation along b's outward normal at
 // its projection (section 11.2, the push shared with b). Returns whether any point moved.
@@ -69,10 +62,7 @@ bool push_from_cell(const CellView& a, const CellView& b, const SHCoeffs& b_coef
     const bool inside = (q - c.point).dot(n) < 0;
     // The triangulation is within its chord sag (< h_s for a resolved cell) of the surface.
     if (!inside && c.distance > 2.0 * h_s) continue;
-    int seed = tri[0];
-    for (int k = 1; k < 3; ++k)
-      if ((b.mesh.points.row(tri[k]).transpose() - q).norm() < (b.mesh.points.row(seed).transpose() - q).norm()) seed = tri[k];
-    const Eigen::Vector2d angles = vertex_angles(grid, seed);
+    const Eigen::Vector2d angles = triangulation_seed(b.mesh, grid, c.triangle, q);
     const SurfaceProjection s = project_onto_surface(b_coeffs, q, angles[0], angles[1], kProjectionIterations);
     min_separation = std::min(min_separation, s.signed_distance);
     if (s.signed_distance < h_s) {
