@@ -31,6 +31,10 @@ void print_domain(const Case& c) {
     if (d.pressure_gradient) {
       std::printf("flow:    mean pressure gradient <grad p> = %s\n", vec(*d.pressure_gradient).c_str());
     }
+    if (d.tube_velocity) {
+      std::printf("flow:    tube mean velocity %g along the vessel axis (<u> from a cell-free wall solve at "
+                  "the start of the run)\n", *d.tube_velocity);
+    }
   } else {
     std::printf("domain:  free (no Ewald sums)\n");
     std::printf("flow:    background %s", to_string(d.background_flow.kind).c_str());

@@ -74,6 +74,19 @@ std::vector<SHSurface> random_cells(const Case& c, const VesselMesh* vessel) {
   }
 }
 
+// The tube velocity is measured on the vessel's axis (the box centre in the cross-section)
+// where it is straight: anywhere in a tube, half a period from a constriction's neck.
+TubeDrive tube_drive(const Case& c) {
+  const CaseVessel& v = *c.vessel;  // the parser allows tube_velocity with a tube or constriction only
+  TubeDrive d;
+  d.velocity = *c.domain.tube_velocity;
+  d.axis = v.axis;
+  d.axis_point = 0.5 * to_eigen(c.domain.box);
+  const double length = c.domain.box[v.axis];
+  d.axis_point[v.axis] = v.kind == VesselKind::constriction ? std::fmod(v.center + 0.5 * length, length) : 0.0;
+  return d;
+}
+
 }  // namespace
 
 RunSetup setup_run(const Case& c) {
@@ -103,6 +116,7 @@ RunSetup setup_run(const Case& c) {
     o.domain.box = PeriodicBox(to_eigen(c.domain.box));
     if (c.domain.mean_velocity) o.mean_velocity = to_eigen(*c.domain.mean_velocity);
     if (c.domain.pressure_gradient) o.pressure_gradient = to_eigen(*c.domain.pressure_gradient);
+    if (c.domain.tube_velocity) o.tube_drive = tube_drive(c);
   } else {
     o.background = background(c.domain.background_flow);
   }

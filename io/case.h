@@ -37,9 +37,12 @@ struct CaseDomain {
   DomainKind kind = DomainKind::periodic;
   Vec3 box{};  // periodic only
   // A periodic domain has exactly one of these: <u> of (6), or <grad p> with (6)-(8) solved
-  // for <u>.
+  // for <u>, or the tube velocity.
   std::optional<Vec3> mean_velocity;
   std::optional<Vec3> pressure_gradient;
+  // Or the mean velocity inside a tube or constriction, along its axis: <u> is set at the
+  // start from a cell-free wall solve (libsolver/stepper/tube_drive.h).
+  std::optional<double> tube_velocity;
   double viscosity_ratio = 5.0;     // lambda
   BackgroundFlow background_flow;   // free only
   bool operator==(const CaseDomain&) const = default;

@@ -269,22 +269,27 @@ CaseDomain read_domain(Table& top) {
                                  {{"periodic", DomainKind::periodic}, {"free", DomainKind::free}});
   d.viscosity_ratio = t->real("viscosity_ratio", d.viscosity_ratio, positive());
   if (d.kind == DomainKind::periodic) {
-    t->reject({"background_flow"}, "kind = \"free\" (a periodic flow is set by mean_velocity or "
-                                   "pressure_gradient)");
+    t->reject({"background_flow"}, "kind = \"free\" (a periodic flow is set by mean_velocity, "
+                                   "pressure_gradient or tube_velocity)");
     const auto box = t->vec3("box", positive());
     if (!box) t->fail_table("box = [L1, L2, L3] is required for kind = \"periodic\"");
     d.box = *box;
     d.mean_velocity = t->vec3("mean_velocity", any_finite());
     d.pressure_gradient = t->vec3("pressure_gradient", any_finite());
+    d.tube_velocity = t->optional_real("tube_velocity", any_finite());
     if (d.mean_velocity && d.pressure_gradient) {
       t->fail("pressure_gradient", "give mean_velocity or pressure_gradient, not both");
     }
-    if (!d.mean_velocity && !d.pressure_gradient) {
-      t->fail_table("a periodic domain needs mean_velocity or pressure_gradient "
+    if (d.tube_velocity && (d.mean_velocity || d.pressure_gradient)) {
+      t->fail("tube_velocity", std::string("give tube_velocity or ") +
+                                   (d.mean_velocity ? "mean_velocity" : "pressure_gradient") + ", not both");
+    }
+    if (!d.mean_velocity && !d.pressure_gradient && !d.tube_velocity) {
+      t->fail_table("a periodic domain needs mean_velocity, pressure_gradient or tube_velocity "
                     "(mean_velocity = [0, 0, 0] for no imposed flow)");
     }
   } else {
-    t->reject({"box", "mean_velocity", "pressure_gradient"}, "kind = \"periodic\"");
+    t->reject({"box", "mean_velocity", "pressure_gradient", "tube_velocity"}, "kind = \"periodic\"");
     if (auto f = t->table("background_flow")) {
       d.background_flow.kind = f->choice<FlowKind>(
           "kind", FlowKind::none,
@@ -566,6 +571,12 @@ Case read_root(const toml::value& root, const fs::path& file) {
   c.title = top.optional_text("title").value_or(file.stem().string());
   c.domain = read_domain(top);
   c.vessel = read_vessel(top, c.domain, file.parent_path());
+  if (c.domain.tube_velocity &&
+      !(c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction))) {
+    ctx.fail(c.source.lines.at("domain.tube_velocity"), "domain.tube_velocity",
+             "needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in its straight section "
+             "sets <u>); use mean_velocity or pressure_gradient otherwise");
+  }
   c.cells = read_cells(top, c.domain, c.vessel.has_value());
   c.ewald = read_ewald(top, c.domain);
   c.solver = read_solver(top);

@@ -80,6 +80,7 @@ void write_domain(Writer& w, const CaseDomain& d) {
     w.key("box", vec(d.box));
     if (d.mean_velocity) w.key("mean_velocity", vec(*d.mean_velocity));
     if (d.pressure_gradient) w.key("pressure_gradient", vec(*d.pressure_gradient));
+    if (d.tube_velocity) w.key("tube_velocity", *d.tube_velocity);
   } else {
     std::string flow = "{ kind = ";
     flow.append(quoted(to_string(d.background_flow.kind)));

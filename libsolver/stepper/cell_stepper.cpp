@@ -33,8 +33,15 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
     if (options_.collision_threshold > 0) wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
+    if (const auto& d = options_.tube_drive) {
+      if (options_.pressure_gradient) throw std::invalid_argument("CellStepper: a tube velocity or a pressure gradient");
+      const double ratio = tube_velocity_per_mean_velocity(*wall_, d->axis_point, d->axis);
+      options_.mean_velocity = Eigen::Vector3d::Unit(d->axis) * (d->velocity / ratio);
+    }
   } else if (options_.pressure_gradient) {
     throw std::invalid_argument("CellStepper: a prescribed pressure gradient needs a vessel wall to resist it");
+  } else if (options_.tube_drive) {
+    throw std::invalid_argument("CellStepper: a tube velocity needs a vessel wall");
   }
   for (const Cell& c : cells_) {
     const SurfaceGeometry g = c.shape.geometry(*grids_->n_grid);

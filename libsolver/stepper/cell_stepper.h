@@ -9,7 +9,8 @@
 //              normal correction of each cell to its initial volume).
 // solve() does not change the state, so output written between the two (or a frame of the
 // final state) leaves a run bit-for-bit the same; step() is solve() then advance().
-// Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8); free space (no walls) by
+// Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8, or a tube velocity,
+// tube_drive.h); free space (no walls) by
 // an imposed background flow. Without cells a step is one quasi-steady wall solve.
 #include <Eigen/Core>
 #include <functional>
@@ -22,6 +23,7 @@
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/step_timings.h"
+#include "libsolver/stepper/tube_drive.h"
 #include "libsolver/stepper/wall_coupling.h"
 
 namespace rbcflow {
@@ -35,6 +37,7 @@ struct CellStepperOptions {
   LayerDomain domain;                     // periodic box (mean velocity below) or free space
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();        // <u> of eq. (6), periodic
   std::optional<Eigen::Vector3d> pressure_gradient;               // prescribed <grad p> instead
+  std::optional<TubeDrive> tube_drive;  // or a tube velocity: sets mean_velocity at construction
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background;  // free space: u_inf(x)
   double gmres_tolerance = 1e-6;
   int gmres_max_iterations = 100;
@@ -100,6 +103,8 @@ class CellStepper {
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }
   double dt() const { return options_.dt; }
+  // The <u> that drives a periodic flow (set from the tube velocity where one was given).
+  const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }
   const WallCoupling* wall() const { return wall_.get(); }

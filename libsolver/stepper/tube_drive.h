@@ -13,6 +13,14 @@
 
 namespace rbcflow {
 
+// Drive the flow at tube mean velocity `velocity` along box axis `axis`, measured where the
+// vessel is a straight tube about `axis_point` (on its axis).
+struct TubeDrive {
+  double velocity = 0;
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
+  int axis = 2;
+};
+
 // Tube mean velocity at `axis_point` per unit <u> along `axis` (0, 1, 2), without cells.
 double tube_velocity_per_mean_velocity(WallCoupling& wall, const Eigen::Vector3d& axis_point, int axis);
 

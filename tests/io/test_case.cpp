@@ -200,6 +200,8 @@ TEST(Case, WrittenCaseReadsBackEqual) {
       minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.5]\n"
               "[cells]\nhematocrit = 0.3\n[output]\nformats = []\nrender_view = \"end\"\n"),
       minimal("[vessel]\nkind = \"file\"\npath = \"wall.msh\"\nscale = 0.354\n[ewald]\ngrid = [8, 8, 8]\n"),
+      "[domain]\nbox = [5, 5, 10]\ntube_velocity = 2.5\n[vessel]\nkind = \"constriction\"\ndiameter = 3.5\n"
+      "depth = 2.2\nwidth = 1.2\ncenter = 5\n",
   };
   for (const std::string& text : cases) {
     const Case c = parse_case(text, dir / "in.toml");
@@ -322,7 +324,7 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
 
 TEST(Case, InconsistentKeysAreErrors) {
   EXPECT_EQ(error_of("[domain]\nbox = [1, 1, 1]\n"),
-            "bad.toml:1: [domain]: a periodic domain needs mean_velocity or pressure_gradient "
+            "bad.toml:1: [domain]: a periodic domain needs mean_velocity, pressure_gradient or tube_velocity "
             "(mean_velocity = [0, 0, 0] for no imposed flow)");
   EXPECT_EQ(error_of(minimal("pressure_gradient = [0, 0, 1]\n")),
             "bad.toml:4: domain.pressure_gradient: give mean_velocity or pressure_gradient, not both");
@@ -365,6 +367,28 @@ TEST(Case, UnreadableFileIsAnError) {
   } catch (const CaseError& e) {
     EXPECT_EQ(std::string(e.what()), "/nonexistent/case.toml: cannot read the case file");
   }
+}
+
+TEST(Case, TubeVelocityDrivesATubeOrConstrictionOnly) {
+  const Case c = parse_case("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\n[vessel]\ndiameter = 3.5\n", "t.toml");
+  ASSERT_TRUE(c.domain.tube_velocity);
+  EXPECT_EQ(*c.domain.tube_velocity, 2.0);
+  EXPECT_FALSE(c.domain.mean_velocity);
+  EXPECT_FALSE(c.domain.pressure_gradient);
+  EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\n"),
+            "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in "
+            "its straight section sets <u>); use mean_velocity or pressure_gradient otherwise");
+  EXPECT_TRUE(contains(error_of("[domain]\nbox = [8, 8, 8]\ntube_velocity = 2\n[vessel]\nkind = \"bifurcation\"\n"
+                                "diameter = 3\ndaughter_diameters = [2, 2]\n"),
+                       "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind"));
+  EXPECT_EQ(error_of(minimal("tube_velocity = 2\n")),
+            "bad.toml:4: domain.tube_velocity: give tube_velocity or mean_velocity, not both");
+  EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\npressure_gradient = [0, 0, -1]\ntube_velocity = 2\n"),
+            "bad.toml:4: domain.tube_velocity: give tube_velocity or pressure_gradient, not both");
+  EXPECT_TRUE(contains(error_of("[domain]\nkind = \"free\"\ntube_velocity = 2\n"),
+                       "bad.toml:3: domain.tube_velocity: applies only to kind = \"periodic\""));
+  EXPECT_TRUE(contains(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = nan\n[vessel]\ndiameter = 3.5\n"),
+                       "domain.tube_velocity: nan is out of range"));
 }
 
 TEST(Case, CaseErrorNamesTheLineOfALaterCheck) {

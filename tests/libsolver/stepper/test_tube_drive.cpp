@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "geometry/vessel.h"
+#include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/tube_drive.h"
 #include "libsolver/wall/tube_flow.h"
 
@@ -54,4 +55,27 @@ TEST(TubeDrive, RejectsAnAxisOutsideTheBox) {
   auto wall = std::make_shared<const WallElements>(tube(spec));
   WallCoupling coupling(wall, PeriodicBox(spec.box), 1e-6, WallSolveOptions{});
   EXPECT_THROW(tube_velocity_per_mean_velocity(coupling, Eigen::Vector3d(2.5, 2.5, 1.0), 3), std::invalid_argument);
+}
+
+TEST(TubeDrive, StepperSetsTheMeanVelocityFromTheTubeVelocity) {
+  TubeSpec spec;
+  spec.diameter = kD;
+  spec.box = Eigen::Vector3d(kSide, kSide, kLength);
+  spec.element_size = kD / 6;
+  auto wall = std::make_shared<const WallElements>(tube(spec));
+  const Eigen::Vector3d axis_point(0.5 * kSide, 0.5 * kSide, 0.0);
+  WallCoupling coupling(wall, PeriodicBox(spec.box), 1e-6, WallSolveOptions{});
+  const double ratio = tube_velocity_per_mean_velocity(coupling, axis_point, 2);
+
+  CellStepperOptions o;
+  o.domain = LayerDomain{PeriodicBox(spec.box), 1e-6};
+  o.wall = wall;
+  o.tube_drive = TubeDrive{1.5, axis_point, 2};
+  const CellStepper stepper({}, CellGrids::make(4, 4), o);
+  EXPECT_NEAR(stepper.mean_velocity().z(), 1.5 / ratio, 1e-9 / ratio);
+  EXPECT_EQ(stepper.mean_velocity().x(), 0.0);
+  EXPECT_EQ(stepper.mean_velocity().y(), 0.0);
+
+  o.pressure_gradient = Eigen::Vector3d(0, 0, -1);
+  EXPECT_THROW(CellStepper({}, CellGrids::make(4, 4), o), std::invalid_argument);
 }
