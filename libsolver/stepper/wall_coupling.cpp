@@ -12,7 +12,9 @@ WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const Perio
       ewald_tolerance_(ewald_tolerance),
       options_(options),
       solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance, nullptr,
-                           WallOperator::RealSpace::assembled)) {}
+                           WallOperator::RealSpace::assembled)) {
+  if (options_.recycle > 0) unit_forces();  // the seeds of the recycled Krylov space
+}
 
 WallSolution WallCoupling::solve(const PointField& v, const PointField& guess) {
   return solver_.solve(v, 1.0, options_, guess);
@@ -24,13 +26,14 @@ Eigen::Vector3d WallCoupling::pressure_gradient(const PointField& force) const {
 
 const std::array<PointField, 3>& WallCoupling::unit_forces() {
   if (!unit_forces_) {
-    std::array<PointField, 3> f;
+    std::vector<PointField> unit_velocities;
     for (int j = 0; j < 3; ++j) {
       Eigen::RowVector3d e = Eigen::RowVector3d::Zero();
       e[j] = 1.0;
-      f[j] = solve(e.replicate(elements_->num_nodes(), 1), {}).force;
+      unit_velocities.push_back(e.replicate(elements_->num_nodes(), 1));
     }
-    unit_forces_ = std::move(f);
+    const std::vector<WallSolution> s = solver_.seed(unit_velocities, 1.0, options_);
+    unit_forces_ = std::array<PointField, 3>{s[0].force, s[1].force, s[2].force};
   }
   return *unit_forces_;
 }

@@ -5,7 +5,10 @@
 // nodes, for the wall force F, and gives the wall's velocity -(1/(8 pi mu)) N_W F at the cell
 // nodes for (10). F is the force density of the fluid on the wall, so <grad p> = -(1/V) int F
 // (eq. 8). With a prescribed <grad p>, <u> is found from the wall's response to a unit mean
-// velocity along each axis (three solves, once per run): (8) is linear in <u>.
+// velocity along each axis (three solves, once per run): (8) is linear in <u>. The same three
+// solves seed the recycled Krylov space of every later wall solve (WallSolveOptions::recycle,
+// on by default): they hold the wall's slow global modes, which cut the GMRES iterations of a
+// step several-fold in long tubes.
 #include <Eigen/Core>
 #include <array>
 #include <memory>

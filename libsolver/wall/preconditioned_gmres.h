@@ -3,7 +3,15 @@
 // x = M^{-1} y, so the residual it monitors is the true one, |b - A x| / |b|. A and M^{-1}
 // are callables Eigen::VectorXd(const Eigen::VectorXd&). Modified Gram-Schmidt, Givens
 // rotations; the initial guess is x.
+//
+// Krylov recycling (GCRO, de Sturler 1999; Parks et al., SIAM J. Sci. Comput. 28, 2006) for a
+// sequence of systems with the same A and M: a RecycledSpace holds U and C with
+// A M^{-1} U = C and C^T C = I. The solve first removes the part of the residual in range(C)
+// exactly (x += M^{-1} U C^T r) and then runs GMRES on (I - C C^T) A M^{-1}, whose spectrum
+// lacks the directions in C: the slow, global modes that every solve would otherwise rebuild.
+// A solve may also grow the space with its own Arnoldi vectors, up to a capacity.
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -16,10 +24,43 @@ struct GmresReport {
   bool converged = false;
 };
 
+struct RecycledSpace {
+  Eigen::MatrixXd U, C;  // n x k: A M^{-1} U = C, C orthonormal
+  int size() const { return static_cast<int>(C.cols()); }
+  int capacity = 0;      // grow() adds columns up to this many
+  bool growing = false;  // whether a solve adds its Arnoldi vectors
+
+  // Appends the directions of one GMRES cycle: with W = V_k - U B (its search directions,
+  // deflated) and the Arnoldi relation A M^{-1} W = V_{k+1} Hbar, Hbar = Q R gives
+  // A M^{-1} (W R^{-1}) = V_{k+1} Q, orthonormal and orthogonal to C.
+  void grow(const std::vector<Eigen::VectorXd>& V, const Eigen::MatrixXd& Hbar, const Eigen::MatrixXd& B, int k) {
+    k = std::min(k, capacity - size());
+    if (k <= 0 || static_cast<int>(V.size()) < k + 1) return;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Hbar.topLeftCorner(k + 1, k));
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(k + 1, k);
+    const Eigen::MatrixXd R = qr.matrixQR().topLeftCorner(k, k).triangularView<Eigen::Upper>();
+    if ((R.diagonal().array().abs() < 1e-12 * R.diagonal().cwiseAbs().maxCoeff()).any()) return;
+    const Eigen::Index n = V[0].size();
+    Eigen::MatrixXd W(n, k), Vk1(n, k + 1);
+    for (int j = 0; j <= k; ++j) {
+      Vk1.col(j) = V[j];
+      if (j < k) W.col(j) = V[j];
+    }
+    if (size() > 0) W -= U * B.leftCols(k);
+    const Eigen::MatrixXd Unew = R.transpose().triangularView<Eigen::Lower>().solve(W.transpose()).transpose();
+    const Eigen::MatrixXd Cnew = Vk1 * Q;
+    const int old = size();
+    U.conservativeResize(n, old + k);
+    C.conservativeResize(n, old + k);
+    U.rightCols(k) = Unew;
+    C.rightCols(k) = Cnew;
+  }
+};
+
 template <typename Operator, typename Preconditioner>
 GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eigen::VectorXd& b,
                                  Eigen::VectorXd& x, double tolerance, int max_iterations,
-                                 int restart = 60) {
+                                 int restart = 60, RecycledSpace* recycled = nullptr) {
   GmresReport report;
   const double b_norm = b.norm();
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
@@ -29,28 +70,41 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     return report;
   }
   while (true) {
-    const Eigen::VectorXd r = b - A(x);
-    const double beta = r.norm();
-    report.relative_residual = beta / b_norm;
+    Eigen::VectorXd r = b - A(x);
+    report.relative_residual = r.norm() / b_norm;
     if (report.relative_residual <= tolerance) {
       report.converged = true;
       return report;
     }
     if (report.iterations >= max_iterations) return report;
+    const int p = recycled ? recycled->size() : 0;
+    if (p > 0) {  // the part of r in range(C), removed exactly
+      const Eigen::VectorXd c = recycled->C.transpose() * r;
+      x += M_inv(Eigen::VectorXd(recycled->U * c));
+      r -= recycled->C * c;
+    }
+    const double beta = r.norm();
     const int m = std::max(1, restart);
     std::vector<Eigen::VectorXd> V{r / beta};
-    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m), Hbar = H, B = Eigen::MatrixXd::Zero(p, m);
     Eigen::VectorXd cs(m), sn(m), g = Eigen::VectorXd::Zero(m + 1);
     g[0] = beta;
     int k = 0;
+    bool breakdown = false;
     while (k < m && report.iterations < max_iterations) {
       Eigen::VectorXd w = A(M_inv(V[k]));
       ++report.iterations;
+      for (int pass = 0; pass < 2 && p > 0; ++pass) {  // twice: C is large, keep w orthogonal to it
+        const Eigen::VectorXd c = recycled->C.transpose() * w;
+        B.col(k) += c;
+        w -= recycled->C * c;
+      }
       for (int j = 0; j <= k; ++j) {
         H(j, k) = w.dot(V[j]);
         w -= H(j, k) * V[j];
       }
       H(k + 1, k) = w.norm();
+      Hbar.col(k) = H.col(k);
       for (int j = 0; j < k; ++j) {
         const double t = cs[j] * H(j, k) + sn[j] * H(j + 1, k);
         H(j + 1, k) = -sn[j] * H(j, k) + cs[j] * H(j + 1, k);
@@ -62,16 +116,18 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
       H(k, k) = denom;
       g[k + 1] = -sn[k] * g[k];
       g[k] *= cs[k];
-      const bool breakdown = H(k + 1, k) == 0.0;
+      breakdown = Hbar(k + 1, k) == 0.0;
       H(k + 1, k) = 0.0;
+      if (!breakdown) V.push_back(w / Hbar(k + 1, k));
       ++k;
       if (std::abs(g[k]) <= tolerance * b_norm || breakdown) break;
-      V.push_back(w / w.norm());
     }
     const Eigen::VectorXd y = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
     Eigen::VectorXd z = Eigen::VectorXd::Zero(b.size());
     for (int j = 0; j < k; ++j) z += y[j] * V[j];
+    if (p > 0) z -= recycled->U * (B.leftCols(k) * y);
     x += M_inv(z);
+    if (recycled && recycled->growing && !breakdown) recycled->grow(V, Hbar, B, k);
   }
 }
 

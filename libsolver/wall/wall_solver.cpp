@@ -21,14 +21,29 @@ WallSolution WallSolver::solve(const PointField& velocity, double mu, const Wall
   auto A = [&](const Eigen::VectorXd& f) { return to_vector(op_.apply(to_field(f))); };
   auto M_inv = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(near_lu_.solve(r)); };
   WallSolution s;
-  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations,
-                                 options.restart);
+  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart,
+                                 recycled_.size() > 0 || recycled_.growing ? &recycled_ : nullptr);
   if (!s.gmres.converged)
     throw std::runtime_error("wall solve did not converge: relative residual " +
                              std::to_string(s.gmres.relative_residual) + " after " +
                              std::to_string(s.gmres.iterations) + " GMRES iterations");
   s.force = to_field(x);
   return s;
+}
+
+std::vector<WallSolution> WallSolver::seed(const std::vector<PointField>& velocities, double mu,
+                                          const WallSolveOptions& options) {
+  recycled_.capacity = options.recycle;
+  recycled_.growing = options.recycle > 0;
+  std::vector<WallSolution> out;
+  try {
+    for (const PointField& v : velocities) out.push_back(solve(v, mu, options));
+  } catch (...) {
+    recycled_.growing = false;
+    throw;
+  }
+  recycled_.growing = false;
+  return out;
 }
 
 Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const PointField& force,

@@ -7,6 +7,7 @@
 // that its real-space Ewald part is a sparse matrix too. Not converging is an error.
 #include <Eigen/Core>
 #include <Eigen/SparseLU>
+#include <vector>
 
 #include "preconditioned_gmres.h"
 #include "wall_operator.h"
@@ -17,6 +18,9 @@ struct WallSolveOptions {
   double tolerance = 1e-6;  // relative residual
   int max_iterations = 300;
   int restart = 60;
+  // Krylov recycling (preconditioned_gmres.h): the number of directions kept from the
+  // seed solves (WallSolver::seed) and deflated in every later solve; 0: none.
+  int recycle = 150;
 };
 
 struct WallSolution {
@@ -34,11 +38,18 @@ class WallSolver {
   WallSolution solve(const PointField& velocity, double mu, const WallSolveOptions& options = {},
                      const PointField& initial_guess = {});
 
+  // Solves for each velocity in turn, keeping the Krylov directions of these solves (up to
+  // options.recycle) for all later ones: the same seeds give the same space, so a run and its
+  // restart solve alike.
+  std::vector<WallSolution> seed(const std::vector<PointField>& velocities, double mu, const WallSolveOptions& options);
+  int recycled_directions() const { return recycled_.size(); }
+
   WallOperator& op() { return op_; }
 
  private:
   WallOperator op_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> near_lu_;
+  RecycledSpace recycled_;
 };
 
 // Eq. (8): <grad p> = -(1/V) int_W f dS.

@@ -1,0 +1,100 @@
+// GMRES with Krylov recycling (libsolver/wall/preconditioned_gmres.h) on a dense
+// non-symmetric matrix with a cluster of small eigenvalues (the slow modes recycling is for):
+// the recycled space satisfies its defining relations to rounding, a solve with it reaches
+// the same solution to the tolerance, and later right-hand sides take fewer iterations.
+// Measured: GMRES(100) to 1e-8 takes 182-190 iterations for random right-hand sides, 86-87 with
+// the 100 directions of one earlier solve; a halving is asserted.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cstdio>
+#include <random>
+
+#include "libsolver/wall/preconditioned_gmres.h"
+
+using namespace rbcflow;
+
+namespace {
+
+constexpr int kN = 300;
+
+// A = Q diag(lambda) Q^T + 0.02 S (S a random non-symmetric matrix): eigenvalues in [1, 10]
+// apart from 20 in 0.01..0.05. M^{-1} = diag(A)^{-1}.
+struct Problem {
+  Eigen::MatrixXd A;
+  Eigen::VectorXd d;
+  Problem() {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> g;
+    Eigen::MatrixXd R(kN, kN), S(kN, kN);
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) R(i, j) = g(rng), S(i, j) = g(rng) / std::sqrt(double(kN));
+    const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(R).householderQ();
+    Eigen::VectorXd lambda(kN);
+    for (int i = 0; i < kN; ++i) lambda[i] = i < 20 ? 1e-2 * (1 + 0.2 * i) : 1 + 9.0 * (i - 20) / (kN - 21);
+    A = Q * lambda.asDiagonal() * Q.transpose() + 0.02 * S;
+    d = A.diagonal();
+  }
+  Eigen::VectorXd apply(const Eigen::VectorXd& x) const { return A * x; }
+  Eigen::VectorXd precondition(const Eigen::VectorXd& r) const { return r.cwiseQuotient(d); }
+};
+
+Eigen::VectorXd rhs(int seed) {
+  std::mt19937 rng(100 + seed);
+  std::normal_distribution<double> g;
+  Eigen::VectorXd b(kN);
+  for (int i = 0; i < kN; ++i) b[i] = g(rng);
+  return b;
+}
+
+}  // namespace
+
+TEST(PreconditionedGmres, RecyclingKeepsTheSolutionAndCutsIterations) {
+  const Problem P;
+  auto A = [&](const Eigen::VectorXd& x) { return P.apply(x); };
+  auto M = [&](const Eigen::VectorXd& r) { return P.precondition(r); };
+  const double tol = 1e-8;
+
+  RecycledSpace space;
+  space.capacity = 100;
+  space.growing = true;
+  Eigen::VectorXd x0;
+  const GmresReport seed = preconditioned_gmres(A, M, rhs(0), x0, tol, 2000, 100, &space);
+  ASSERT_TRUE(seed.converged);
+  space.growing = false;
+  ASSERT_EQ(space.size(), 100);
+  // A M^{-1} U = C and C^T C = I.
+  Eigen::MatrixXd AMU(kN, space.size());
+  for (int j = 0; j < space.size(); ++j) AMU.col(j) = A(M(space.U.col(j)));
+  EXPECT_LT((AMU - space.C).norm() / space.C.norm(), 1e-10);
+  EXPECT_LT((space.C.transpose() * space.C - Eigen::MatrixXd::Identity(space.size(), space.size())).norm(), 1e-10);
+
+  for (int k = 1; k <= 3; ++k) {
+    const Eigen::VectorXd b = rhs(k);
+    Eigen::VectorXd plain, recycled;
+    const GmresReport p = preconditioned_gmres(A, M, b, plain, tol, 2000, 100);
+    const GmresReport r = preconditioned_gmres(A, M, b, recycled, tol, 2000, 100, &space);
+    ASSERT_TRUE(p.converged);
+    ASSERT_TRUE(r.converged);
+    EXPECT_LE((b - A(recycled)).norm(), tol * b.norm());  // the true residual
+    // Both within tol of the same solution: |x - y| <= |A^{-1}| 2 tol |b| (|A^{-1}| ~ 1/1e-2).
+    const Eigen::VectorXd exact = P.A.partialPivLu().solve(b);
+    EXPECT_LT((recycled - exact).norm(), 2e2 * tol * b.norm());
+    EXPECT_LT((plain - exact).norm(), 2e2 * tol * b.norm());
+    std::printf("rhs %d: %d iterations plain, %d with %d recycled directions\n", k, p.iterations, r.iterations,
+                space.size());
+    EXPECT_LT(r.iterations, p.iterations / 2) << "rhs " << k;
+  }
+}
+
+TEST(PreconditionedGmres, AnEmptySpaceChangesNothing) {
+  const Problem P;
+  auto A = [&](const Eigen::VectorXd& x) { return P.apply(x); };
+  auto M = [&](const Eigen::VectorXd& r) { return P.precondition(r); };
+  RecycledSpace empty;
+  Eigen::VectorXd a, b;
+  const GmresReport ra = preconditioned_gmres(A, M, rhs(1), a, 1e-8, 2000, 30);
+  const GmresReport rb = preconditioned_gmres(A, M, rhs(1), b, 1e-8, 2000, 30, &empty);
+  EXPECT_EQ(ra.iterations, rb.iterations);
+  EXPECT_EQ((a - b).norm(), 0.0);
+}
