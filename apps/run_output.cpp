@@ -61,6 +61,7 @@ std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSoluti
 
 std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear) {
   std::vector<CellRow> rows;
+  if (stepper.cells().empty()) return rows;
   const SHTransform& t = *stepper.grids().n_grid;
   const int np = t.grid().size();
   for (std::size_t c = 0; c < stepper.cells().size(); ++c) {

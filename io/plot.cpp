@@ -57,7 +57,8 @@ void add_line(vtkChartXY* chart, const Series& s, const unsigned char rgb[3]) {
   }
   table->AddColumn(t);
   table->AddColumn(y);
-  vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+  // A one-step run has one row: a line needs two points (VTK logs an error), so draw a point.
+  vtkPlot* line = chart->AddPlot(s.t.size() < 2 ? vtkChart::POINTS : vtkChart::LINE);
   line->SetInputData(table, 0, 1);
   line->SetColor(rgb[0], rgb[1], rgb[2], 255);
   line->SetWidth(2.0);

@@ -23,6 +23,7 @@ std::string at_step(long step) { return " at step " + std::to_string(step); }
 CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrids> grids, CellStepperOptions options)
     : cells_(std::move(cells)), grids_(std::move(grids)), options_(std::move(options)) {
   if (cells_.empty() && !options_.wall) throw std::invalid_argument("CellStepper: no cells and no wall");
+  if (!cells_.empty() && !grids_) throw std::invalid_argument("CellStepper: cells need their grids");
   if (!(options_.dt > 0)) throw std::invalid_argument("CellStepper: dt must be positive");
   if (!(options_.viscosity_ratio > 0)) throw std::invalid_argument("CellStepper: the viscosity ratio must be positive");
   if (!options_.domain.box && !options_.background) {
@@ -55,7 +56,7 @@ FlowSolution CellStepper::solve() const { return solve_with(state_.previous_velo
 
 FlowSolution CellStepper::solve_with(const Eigen::MatrixXd& previous_velocity, const PointField& previous_force) const {
   const int nc = static_cast<int>(cells_.size());
-  const int np = grids_->n_grid->grid().size();
+  const int np = points_per_cell();
   const double lambda = options_.viscosity_ratio;
   const long step = state_.steps + 1;
   FlowSolution s;
@@ -184,18 +185,10 @@ void CellStepper::enforce_volume(int c) {
   }
 }
 
-StepReport CellStepper::advance(const FlowSolution& s) {
+void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   const int nc = static_cast<int>(cells_.size());
-  const int np = grids_->n_grid->grid().size();
+  const int np = points_per_cell();
   const SHTransform& tn = *grids_->n_grid;
-  StepReport report;
-  report.gmres_iterations = s.gmres_cells;
-  report.gmres_residual = s.cell_residual;
-  report.gmres_wall = s.gmres_wall;
-  report.wall_residual = s.wall_residual;
-  report.mean_velocity = s.mean_velocity;
-  report.pressure_gradient = s.pressure_gradient;
-
   // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
   const bool ab2 = options_.scheme == TimeScheme::ab2 && state_.previous_velocity.rows() == nc * np;
   for (int c = 0; c < nc; ++c) {
@@ -211,7 +204,7 @@ StepReport CellStepper::advance(const FlowSolution& s) {
       throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
     }
   }
-  if (options_.collision_threshold > 0 && nc > 0) {
+  if (options_.collision_threshold > 0) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);
     const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
@@ -232,6 +225,17 @@ StepReport CellStepper::advance(const FlowSolution& s) {
     report.max_area_error = std::max(report.max_area_error, da);
     state_.shapes[c] = cells_[c].shape.coeffs();
   }
+}
+
+StepReport CellStepper::advance(const FlowSolution& s) {
+  StepReport report;
+  report.gmres_iterations = s.gmres_cells;
+  report.gmres_residual = s.cell_residual;
+  report.gmres_wall = s.gmres_wall;
+  report.wall_residual = s.wall_residual;
+  report.mean_velocity = s.mean_velocity;
+  report.pressure_gradient = s.pressure_gradient;
+  if (!cells_.empty()) move_cells(s, report);
   state_.previous_velocity = s.velocity;
   state_.previous_wall_force = s.wall_force;
   state_.time += options_.dt;
@@ -243,7 +247,7 @@ StepperState CellStepper::state() const { return state_; }
 
 void CellStepper::restore(const StepperState& s) {
   const std::size_t nc = cells_.size();
-  const int np = grids_->n_grid->grid().size();
+  const int np = points_per_cell();
   if (s.shapes.size() != nc || s.volume0.size() != nc || s.area0.size() != nc)
     throw std::invalid_argument("restore: the state has " + std::to_string(s.shapes.size()) + " cells, the run " +
                                 std::to_string(nc));

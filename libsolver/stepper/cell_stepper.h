@@ -106,7 +106,7 @@ class CellStepper {
   // The <u> that drives a periodic flow (set from the tube velocity where one was given).
   const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
   const std::vector<Cell>& cells() const { return cells_; }
-  const CellGrids& grids() const { return *grids_; }
+  const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
   // Surface velocity of the last step, stacked over cells (nodes x 3).
   const Eigen::MatrixXd& velocity() const { return state_.previous_velocity; }
@@ -119,6 +119,9 @@ class CellStepper {
 
  private:
   void enforce_volume(int c);
+  // X^{n+1}, collision removal and the volume constraint (advance() with cells).
+  void move_cells(const FlowSolution& s, StepReport& report);
+  int points_per_cell() const { return grids_ ? static_cast<int>(grids_->n_grid->grid().size()) : 0; }
   FlowSolution solve_with(const Eigen::MatrixXd& previous_velocity, const PointField& previous_force) const;
 
   std::vector<Cell> cells_;
