@@ -23,13 +23,18 @@ namespace {
 
 constexpr double kD = 3.5, kSide = 5.0, kLength = 3.0;
 
-double measured_ratio(double h) {
+const Eigen::Vector3d kBox(kSide, kSide, kLength);
+
+std::shared_ptr<const WallElements> tube_wall(double h) {
   TubeSpec spec;
   spec.diameter = kD;
-  spec.box = Eigen::Vector3d(kSide, kSide, kLength);
+  spec.box = kBox;
   spec.element_size = h;
-  auto wall = std::make_shared<const WallElements>(tube(spec));
-  WallCoupling coupling(wall, PeriodicBox(spec.box), 1e-8, WallSolveOptions{1e-9, 300, 60});
+  return std::make_shared<const WallElements>(tube(spec));
+}
+
+double measured_ratio(double h) {
+  WallCoupling coupling(tube_wall(h), PeriodicBox(kBox), 1e-8, WallSolveOptions{1e-9, 300, 60});
   return tube_velocity_per_mean_velocity(coupling, Eigen::Vector3d(0.5 * kSide, 0.5 * kSide, 0.3 * kLength), 2);
 }
 
@@ -48,27 +53,18 @@ TEST(TubeDrive, StraightTubeRatioMatchesEquation45) {
 }
 
 TEST(TubeDrive, RejectsAnAxisOutsideTheBox) {
-  TubeSpec spec;
-  spec.diameter = kD;
-  spec.box = Eigen::Vector3d(kSide, kSide, kLength);
-  spec.element_size = kD / 6;
-  auto wall = std::make_shared<const WallElements>(tube(spec));
-  WallCoupling coupling(wall, PeriodicBox(spec.box), 1e-6, WallSolveOptions{});
+  WallCoupling coupling(tube_wall(kD / 6), PeriodicBox(kBox), 1e-6, WallSolveOptions{});
   EXPECT_THROW(tube_velocity_per_mean_velocity(coupling, Eigen::Vector3d(2.5, 2.5, 1.0), 3), std::invalid_argument);
 }
 
 TEST(TubeDrive, StepperSetsTheMeanVelocityFromTheTubeVelocity) {
-  TubeSpec spec;
-  spec.diameter = kD;
-  spec.box = Eigen::Vector3d(kSide, kSide, kLength);
-  spec.element_size = kD / 6;
-  auto wall = std::make_shared<const WallElements>(tube(spec));
+  const auto wall = tube_wall(kD / 6);
   const Eigen::Vector3d axis_point(0.5 * kSide, 0.5 * kSide, 0.0);
-  WallCoupling coupling(wall, PeriodicBox(spec.box), 1e-6, WallSolveOptions{});
+  WallCoupling coupling(wall, PeriodicBox(kBox), 1e-6, WallSolveOptions{});
   const double ratio = tube_velocity_per_mean_velocity(coupling, axis_point, 2);
 
   CellStepperOptions o;
-  o.domain = LayerDomain{PeriodicBox(spec.box), 1e-6};
+  o.domain = LayerDomain{PeriodicBox(kBox), 1e-6};
   o.wall = wall;
   o.tube_drive = TubeDrive{1.5, axis_point, 2};
   const CellStepper stepper({}, CellGrids::make(4, 4), o);
