@@ -18,7 +18,18 @@
 // large translation speed) falls below 2% long before mu_eff settles (still -0.1 per 0.25 at
 // U = 7.66), so the 5.09 -> 7.66 step (0.058) was smaller than the transient left; and the
 // unconstrained volume drift grew with U towards the 1% limit. Hence the mu_eff criterion and
-// the volume constraint, which have NOT yet been run to completion (estimated ~1 h on 1 thread).
+// the volume constraint. That version (commit 8e5ceb6, 1 thread beside other jobs) was stopped
+// during the fourth velocity after 1.4 h:
+//   U target  U_tube  mu_eff/mu_0  t at stop  steps
+//   0.62      0.590   1.52945      6.17       2201
+//   1.25      1.242   1.40391      5.30       1891
+//   2.52      2.687   1.20917      6.70       2391
+//   5.09      5.94    0.97967      6.72       2400 (stopped; still falling ~0.04 per unit time)
+// Decreasing with U, but after the shape has settled (length and radius constant to 1e-3)
+// mu_eff keeps drifting down at a steady rate (-0.025 per unit time at U = 2.52, -0.04 at
+// 5.09) while the cell creeps off the axis (offset 7.5e-5 -> 7.5e-3) and the membrane still
+// slides (slip ~1%), and at U = 5.09 it falls below the plasma's (unphysical). Suspected: the
+// N = 8 resolution over long runs. The test fails; see the issue notes.
 #include <gtest/gtest.h>
 
 #include "axisymmetric_tube_support.h"
