@@ -35,7 +35,9 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
                                            options_.wall_solve);
     if (options_.collision_threshold > 0) wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
     if (const auto& d = options_.tube_drive) {
-      if (options_.pressure_gradient) throw std::invalid_argument("CellStepper: give a tube velocity or a pressure gradient, not both");
+      if (options_.pressure_gradient) {
+        throw std::invalid_argument("CellStepper: give a tube velocity or a pressure gradient, not both");
+      }
       const double ratio = tube_velocity_per_mean_velocity(*wall_, d->axis_point, d->axis);
       options_.mean_velocity = Eigen::Vector3d::Unit(d->axis) * (d->velocity / ratio);
     }
