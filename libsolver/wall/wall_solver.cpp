@@ -21,8 +21,7 @@ WallSolution WallSolver::solve(const PointField& velocity, double mu, const Wall
   auto A = [&](const Eigen::VectorXd& f) { return to_vector(op_.apply(to_field(f))); };
   auto M_inv = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(near_lu_.solve(r)); };
   WallSolution s;
-  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart,
-                                 recycled_.size() > 0 || recycled_.growing ? &recycled_ : nullptr);
+  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_);
   if (!s.gmres.converged)
     throw std::runtime_error("wall solve did not converge: relative residual " +
                              std::to_string(s.gmres.relative_residual) + " after " +
