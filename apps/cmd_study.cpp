@@ -3,14 +3,18 @@
 // steady part, and writes DIR/study.csv, DIR/study.png (mu_eff against D with the Pries law
 // at the runs' tube hematocrit and its +-10% band) and end and side renders of every tube.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
+#include "io/case_derived.h"
 #include "io/csv.h"
 #include "io/output_dir.h"
 #include "io/render.h"
@@ -68,15 +72,30 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
   }
 }
 
+// Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write and
+// its diagnostics reach the last step (`steps`, or time.end).
+bool finished_run(const Case& c, const fs::path& dir, long steps) {
+  std::ifstream in(dir / "case.toml", std::ios::binary);
+  if (!in || !fs::is_regular_file(dir / "diagnostics.csv")) return false;
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (written != case_toml(c)) return false;
+  const CsvTable d = read_csv(dir / "diagnostics.csv");
+  const long last = steps > 0 ? steps : std::max(1L, static_cast<long>(std::ceil(c.time.end / time_step(c) - 1e-9)));
+  return !d.rows.empty() && std::stol(d.rows.back()[d.column("step")]) == last;
+}
+
 void print_help() {
   std::printf(
-      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--quiet]\n"
+      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse] [--quiet]\n"
       "  Runs every case (straight tubes with cells, e.g. data/cases/fahraeus/quick/*.toml) into\n"
       "  DIR/<case name>/, averages the effective viscosity (45)-(46) over time >= F x the run's\n"
       "  end (default F = 0.5) with a batch-means standard error, and writes DIR/study.csv,\n"
       "  DIR/study.png (mu_eff against D in um, with the Pries law at the runs' tube hematocrit,\n"
       "  converted to the discharge hematocrit, and its +-10%% band) and DIR/renders/<case>_end.png\n"
-      "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n");
+      "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n"
+      "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
+      "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
+      "  runs made separately with rbcflow run CASE.toml --out DIR/<case name>.\n");
 }
 
 }  // namespace
@@ -88,7 +107,7 @@ int run_study(Args& args) {
   }
   std::string out, fraction_text, steps_text;
   if (!args.option("-o", out)) throw UsageError("rbcflow study: missing -o DIR");
-  const bool quiet = args.flag("--quiet");
+  const bool quiet = args.flag("--quiet"), reuse = args.flag("--reuse");
   args.option("--steady-fraction", fraction_text);
   args.option("--steps", steps_text);
   std::vector<fs::path> case_files{args.positional("case file (CASE.toml)")};
@@ -118,7 +137,11 @@ int run_study(Args& args) {
     const std::string stem = case_files[k].stem().string();
     if (!quiet) std::printf("== %s (%zu of %zu)\n", stem.c_str(), k + 1, cases.size());
     std::fflush(stdout);
-    run_case(RunRequest{c, {}, steps, quiet});
+    if (reuse && finished_run(c, c.output.dir, steps)) {
+      if (!quiet) std::printf("reusing the finished run in %s\n", c.output.dir.c_str());
+    } else {
+      run_case(RunRequest{c, {}, steps, quiet});
+    }
     const SteadyAverage a = steady_average(c.output.dir / "diagnostics.csv", c.vessel->axis, fraction);
     const CsvTable diagnostics = read_csv(c.output.dir / "diagnostics.csv");
     const double ht = std::stod(diagnostics.rows.front()[diagnostics.column("tube_hematocrit")]);

@@ -155,6 +155,7 @@ void run_case(const RunRequest& request) {
     std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", case_file.c_str(), stepper.cells().size(),
                 stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", first, last,
                 c.output.dir.c_str());
+    if (setup.placement_note) std::printf("%s\n", setup.placement_note->c_str());
     if (c.domain.tube_velocity) {
       const Eigen::Vector3d& u = stepper.mean_velocity();
       std::printf("tube velocity %g: <u> = [%.6g, %.6g, %.6g] (cell-free wall solve)\n", *c.domain.tube_velocity, u.x(),

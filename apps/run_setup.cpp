@@ -1,6 +1,9 @@
 #include "run_setup.h"
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
 #include <stdexcept>
 
 #include "case_vessel.h"
@@ -48,9 +51,21 @@ std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background(const Backgrou
   return [](const Eigen::Vector3d&) { return Eigen::Vector3d::Zero().eval(); };
 }
 
+struct PlacedShapes {
+  std::vector<SHSurface> rest, initial;  // the membranes' reference shapes and the starting shapes
+  std::optional<std::string> note;       // how the cells were placed, where it is not plain
+};
+
+std::string fixed(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", x);
+  return buf;
+}
+
 // Cells placed at random without overlap (a count, or the tube hematocrit of the meshed
-// lumen), at least the collision threshold (and 0.05) apart and from the wall.
-std::vector<SHSurface> random_cells(const Case& c, const VesselMesh* vessel) {
+// lumen), at least the collision threshold (and 0.05) apart and from the wall; in tubes
+// narrower than the cell, stacked and pre-deformed (geometry/cell_placement.h).
+PlacedShapes random_cells(const Case& c, const VesselMesh* vessel) {
   const CaseCells& k = *c.cells;
   if (c.domain.kind != DomainKind::periodic) {
     throw case_error(c, "cells.positions", "cells in a free domain must be listed (positions = [[x, y, z], ...])");
@@ -67,11 +82,20 @@ std::vector<SHSurface> random_cells(const Case& c, const VesselMesh* vessel) {
   spec.count = count;
   spec.gap = std::max(c.time.collision_threshold, kMinimumPlacementGap);
   spec.seed = static_cast<std::uint64_t>(k.seed);
+  Placement p;
   try {
-    return placed_surfaces(reference, place_cells(reference, spec, vessel).cells);
+    p = place_cells(reference, spec, vessel);
   } catch (const std::runtime_error& e) {
     throw case_error(c, k.hematocrit ? "cells.hematocrit" : "cells.count", e.what());
   }
+  PlacedShapes out{placed_surfaces(reference, p.cells), initial_surfaces(reference, p.cells), std::nullopt};
+  if (p.stretch_factors != Eigen::Vector3d::Ones()) {
+    const Eigen::Vector3d& f = p.stretch_factors;
+    out.note = "cells: the tube is narrower than a cell; placed stacked along the axis, pre-deformed (stretched " +
+               fixed(f[0]) + " along the axis, " + fixed(f[1]) + " across, " + fixed(f[2]) +
+               " through the thickness; volume kept, the membranes' rest shape undeformed)";
+  }
+  return out;
 }
 
 // The tube velocity is measured on the vessel's axis (the box centre in the cross-section)
@@ -131,18 +155,22 @@ RunSetup setup_run(const Case& c) {
   if (c.cells) {
     const CaseCells& k = *c.cells;
     r.grids = CellGrids::make(k.order, k.dealias * k.order);
-    std::vector<SHSurface> placed;
+    PlacedShapes placed;
     if (k.positions.empty()) {
       placed = random_cells(c, vessel ? &*vessel : nullptr);
+      r.placement_note = placed.note;
     } else {
       check_cell_layout(c);
-      placed = placed_cells(k, k.order);
+      placed.rest = placed_cells(k, k.order);
+      placed.initial = placed.rest;
     }
     std::shared_ptr<const MembraneLaw> law = make_membrane_law(to_string(k.membrane.law), k.membrane.shear_modulus,
                                                                k.membrane.dilatation_modulus);
-    for (SHSurface& s : placed) {
+    for (std::size_t i = 0; i < placed.rest.size(); ++i) {
+      SHSurface& s = placed.initial[i];
       Cell cell;
-      cell.membrane = std::make_shared<const Membrane>(s, r.grids, MembraneParameters{law, k.membrane.bending_modulus});
+      cell.membrane =
+          std::make_shared<const Membrane>(placed.rest[i], r.grids, MembraneParameters{law, k.membrane.bending_modulus});
       if (k.perturbation) perturb(s, *k.perturbation, *r.grids->n_grid);
       cell.shape = std::move(s);
       cell.body_force = to_eigen(k.body_force);

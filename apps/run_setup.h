@@ -3,6 +3,8 @@
 // perturbed), their membranes, the domain and the time step. The one place where the case's
 // keys meet libsolver's options.
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "io/case.h"
@@ -17,6 +19,7 @@ struct RunSetup {
   CellStepperOptions options;
   long steps = 0;  // to reach time.end
   std::optional<double> tube_radius;  // a straight tube: for (45)-(46)
+  std::optional<std::string> placement_note;  // printed by run: cells placed pre-deformed
 };
 
 // Throws CaseError for what only shows once meshed or placed (cells outside the vessel).

@@ -28,6 +28,7 @@ class CellOverlap {
 
   double radius() const { return radius_; }  // of the reference's vertices about its centroid
   const Eigen::Vector3d& centroid() const { return centroid_; }
+  const TriangleMesh& mesh() const { return mesh_; }  // the reference's triangulation, centroid at 0
 
   // Whether cell b (every periodic image of it) is apart from cell a. With `same`, a and b are
   // one cell and only its images other than itself are tested.

@@ -26,6 +26,11 @@ constexpr double kStartScale = 0.5;
 constexpr int kMaxSweeps = 4000, kPatience = 150;
 constexpr double kMaxGrowth = 0.05, kMinGrowth = 1e-4;
 constexpr double kMaxStep = 0.15, kMinStep = 1e-3;  // translation / scaled radius; rotation, rad
+// Pre-deformed cells in narrow tubes: the stretched cell keeps this fraction of the lumen
+// radius free (beside the gap) against the facets of the meshed wall; the squeeze across the
+// tube is searched in steps of kSqueezeStep down to kSmallestSqueeze, the stretch along it up
+// to kLongestStretch (beyond, the start is too far from any shape the cell takes in a tube).
+constexpr double kStackMargin = 0.05, kSqueezeStep = 0.005, kSmallestSqueeze = 0.3, kLongestStretch = 2.5;
 
 // Uniform double in [0, 1) from the top 53 bits: the same sequence with every standard library.
 double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
@@ -117,6 +122,76 @@ std::string percent(double x) {
   return buf;
 }
 
+// The narrowest tubes: `count` cells at equal spacing along the axis through the lumen's centre
+// (one random offset for the stack, a random turn about the axis for each cell), each stretched
+// in its own frame by diag(s_axis, s_width, s_thickness), product 1: the plane of the cell
+// (the reference's x-y) contains the tube axis (along the reference's x); s_axis is the first
+// value from min(1, what the spacing allows) upwards for which a width factor s_width fits the
+// cell in the lumen, and s_width the largest such; the thickness keeps the volume. The faces'
+// area changes by s_axis s_width only: the red cell's membrane is stiff in dilatation.
+Placement stack_deformed(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh& vessel,
+                         const WallDistance& wall, int a, double lumen, std::mt19937_64& rng) {
+  const double length = spec.box[a], spacing = length / spec.count;
+  const double lumen_radius = std::sqrt(lumen / (std::numbers::pi * length));
+  const double fit_radius = (1.0 - kStackMargin) * lumen_radius - spec.gap;
+  const CellOverlap undeformed(reference, spec.check_order, spec.box, &wall, spec.gap);
+  const Eigen::MatrixX3d& p = undeformed.mesh().points;  // reference frame, centroid at 0
+
+  // Along the axis: as close to 1 as lets the width fit, at most what the spacing leaves.
+  const double longest =
+      std::min(kLongestStretch, (spacing - 3.0 * spec.gap) / (2.0 * p.col(0).cwiseAbs().maxCoeff()));
+  auto widest = [&](double s_axis, double s_width) {
+    const double s_thickness = 1.0 / (s_axis * s_width);
+    return ((s_width * p.col(1)).array().square() + (s_thickness * p.col(2)).array().square()).sqrt().maxCoeff();
+  };
+  double s_axis = std::min(1.0, longest), s_width = 0.0;
+  for (; s_axis <= longest + 1e-12 && s_width == 0.0; s_axis += kSqueezeStep) {
+    for (double w = 1.0; w >= kSmallestSqueeze && s_width == 0.0; w -= kSqueezeStep)
+      if (widest(s_axis, w) <= fit_radius) s_width = w;
+  }
+  s_axis -= kSqueezeStep;
+  if (!(longest > 0) || s_width == 0.0) {
+    throw std::runtime_error("cell placement: the tube (equivalent diameter " + percent(2.0 * lumen_radius) +
+                             ") is too narrow for " + std::to_string(spec.count) +
+                             (spec.count == 1 ? " cell" : " cells") + " even squeezed to " +
+                             percent(100.0 * kSmallestSqueeze) + "% of the width and stretched up to " +
+                             percent(kLongestStretch) + "x along it within the spacing " + percent(spacing) +
+                             " (gap " + percent(spec.gap) + "): lower the count or hematocrit, or widen the tube");
+  }
+  const Eigen::Vector3d factors(s_axis, s_width, 1.0 / (s_axis * s_width));
+  SHSurface stretched = reference;
+  stretched.transform(factors.asDiagonal().toDenseMatrix(), undeformed.centroid());
+  const CellOverlap overlap(stretched, spec.check_order, spec.box, &wall, spec.gap);
+  const Problem problem{spec, overlap, nullptr};
+
+  // The lumen's centre in the cross-section: the mean of the wall's nodes.
+  Eigen::Vector3d centre = vessel.surface.points.colwise().mean().transpose();
+  const Eigen::Vector3d t = Eigen::Vector3d::Unit(a), u = Eigen::Vector3d::Unit((a + 1) % 3),
+                        v = Eigen::Vector3d::Unit((a + 2) % 3);
+  centre[a] = spacing * uniform(rng);
+  Placement out;
+  std::vector<CellPose> poses;
+  for (int k = 0; k < spec.count; ++k) {
+    const double turn = 2.0 * std::numbers::pi * uniform(rng);
+    const Eigen::Vector3d across = std::cos(turn) * u + std::sin(turn) * v;  // the thickness direction
+    CellPose pose;
+    pose.rotation << t, across.cross(t), across;  // reference x, y, z to the axis, the width, the thickness
+    pose.position = centre + k * spacing * t;
+    pose.position[a] = std::fmod(pose.position[a], length);
+    if (!problem.fits(pose, poses)) {
+      throw std::runtime_error("cell placement: " + std::to_string(spec.count) +
+                               " cells pre-deformed for the narrow tube (stretch " + percent(factors[0]) + ", " +
+                               percent(factors[1]) + ", " + percent(factors[2]) + ") do not fit at spacing " +
+                               percent(spacing) + " (gap " + percent(spec.gap) + "): lower the count or hematocrit");
+    }
+    poses.push_back(pose);
+    out.cells.push_back({pose.position, pose.rotation,
+                         pose.rotation * factors.asDiagonal().toDenseMatrix() * pose.rotation.transpose()});
+  }
+  out.stretch_factors = factors;
+  return out;
+}
+
 }  // namespace
 
 Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh* vessel) {
@@ -131,11 +206,11 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
   // per length, D = 2 sqrt(V / (pi L)), against the cell diameter 2 r.
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   bool narrow = false;
+  int tube_axis = -1;
   if (vessel && (vessel->period.array() > 0).count() == 1) {
-    int a = 0;
-    vessel->period.maxCoeff(&a);
-    axis = Eigen::Vector3d::Unit(a);
-    narrow = std::sqrt(space / (std::numbers::pi * vessel->period[a])) < kNarrowTubeRatio * overlap.radius();
+    vessel->period.maxCoeff(&tube_axis);
+    axis = Eigen::Vector3d::Unit(tube_axis);
+    narrow = std::sqrt(space / (std::numbers::pi * vessel->period[tube_axis])) < kNarrowTubeRatio * overlap.radius();
   }
   const bool along = spec.orientation == CellOrientation::along_axis ||
                      (spec.orientation == CellOrientation::automatic && narrow);
@@ -152,6 +227,11 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
   std::mt19937_64 rng(spec.seed);
   const std::vector<CellPose> sequential = problem.add_sequentially(rng, 1.0);
   if (static_cast<int>(sequential.size()) == spec.count) return finish(sequential, 0);
+  if (sequential.empty() && tube_axis >= 0) {
+    Placement out = stack_deformed(reference, spec, *vessel, *wall, tube_axis, space, rng);
+    out.hematocrit = hematocrit(spec.count, 1.0);
+    return out;
+  }
 
   // Shrink, then grow: place all cells small, then move and grow them until full size.
   double scale = kStartScale;
@@ -198,16 +278,28 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
   throw std::runtime_error(message);
 }
 
-std::vector<SHSurface> placed_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells) {
+namespace {
+
+std::vector<SHSurface> surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells, bool stretched) {
   const Eigen::Vector3d centroid = volume_centroid(reference.geometry(SHTransform::gauss(2 * reference.order())));
   std::vector<SHSurface> out;
   for (const PlacedCell& c : cells) {
     SHSurface s = reference;
-    s.rotate(c.rotation, centroid);
+    s.transform(stretched ? Eigen::Matrix3d(c.stretch * c.rotation) : c.rotation, centroid);
     s.translate(c.position - centroid);
     out.push_back(std::move(s));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<SHSurface> placed_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells) {
+  return surfaces(reference, cells, false);
+}
+
+std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells) {
+  return surfaces(reference, cells, true);
 }
 
 }  // namespace rbcflow

@@ -9,6 +9,11 @@
 // Overlap and wall tests use the reference surface's grid triangulation at `check_order`:
 // every vertex of one cell at least `gap` from the other's triangles and outside it, every
 // vertex at least `gap` inside the wall.
+//
+// Tubes narrower than the cell (not even one undeformed cell fits) get the cells stacked along
+// the axis at equal spacing, each deformed in advance by a volume-preserving stretch (see
+// PlacedCell): the membrane's rest shape stays the undeformed cell, so the stretch is an initial
+// deformation that the flow relaxes into the tube's parachutes and slippers.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -29,7 +34,8 @@ enum class CellOrientation {
 // bounding radius: 2.75 for the red cell; 3.6 = 1.3 x 2.75 covers the paper's D = 3.5) lets a
 // turned cell fit only near the axis, and random orientations jam before H_T = 0.30 (6 cells
 // in a D = 3.5 tube of length 8 stop at 99% of full size). Below one cell diameter an undeformed cell does not
-// fit at all (the paper's D = 1.75..2.5 tubes hold parachutes, not discs): placement fails.
+// fit at all (the paper's D = 1.75..2.5 tubes hold parachutes, not discs): the cells are
+// placed pre-deformed.
 inline constexpr double kNarrowTubeRatio = 1.3;
 
 struct PlacementSpec {
@@ -43,7 +49,10 @@ struct PlacementSpec {
 
 struct PlacedCell {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();     // where the reference's centroid goes
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // x = R (x_ref - centroid) + position
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // rest shape x = R (x_ref - centroid) + position
+  // The initial shape is x = S R (x_ref - centroid) + position: S symmetric with det S = 1
+  // (the volume kept), the identity except for cells placed pre-deformed in narrow tubes.
+  Eigen::Matrix3d stretch = Eigen::Matrix3d::Identity();
 };
 
 struct Placement {
@@ -51,13 +60,18 @@ struct Placement {
   // Tube hematocrit count * cell volume / lumen volume (the box volume without a vessel).
   double hematocrit = 0.0;
   int compression_sweeps = 0;  // 0 when random sequential addition reached the count
+  // Cells placed pre-deformed (narrow tubes): the stretch factors of the cell along the tube
+  // axis, across it in the cell's plane and through its thickness (product 1); else all 1.
+  Eigen::Vector3d stretch_factors = Eigen::Vector3d::Ones();
 };
 
 // Throws std::invalid_argument for a bad spec, std::runtime_error (saying how many cells fitted
 // and the hematocrit reached) when the count cannot be placed. `vessel` may be null.
 Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh* vessel);
 
-// The placed copies of `reference`.
+// The placed copies of `reference`: their rest shapes (the membranes' reference) and their
+// initial shapes (the rest shapes stretched by PlacedCell::stretch about their centroids).
 std::vector<SHSurface> placed_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells);
+std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells);
 
 }  // namespace rbcflow

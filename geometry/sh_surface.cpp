@@ -103,9 +103,11 @@ void SHSurface::translate(const Eigen::Vector3d& shift) {
   x_.values().row(0) += std::sqrt(2.0) * shift.transpose();
 }
 
-void SHSurface::rotate(const Eigen::Matrix3d& R, const Eigen::Vector3d& center) {
+void SHSurface::rotate(const Eigen::Matrix3d& R, const Eigen::Vector3d& center) { transform(R, center); }
+
+void SHSurface::transform(const Eigen::Matrix3d& A, const Eigen::Vector3d& center) {
   translate(-center);
-  x_.values() = x_.values() * R.transpose();
+  x_.values() = x_.values() * A.transpose();
   translate(center);
 }
 

@@ -56,6 +56,9 @@ class SHSurface {
   void translate(const Eigen::Vector3d& shift);
   // x -> R (x - center) + center.
   void rotate(const Eigen::Matrix3d& R, const Eigen::Vector3d& center = Eigen::Vector3d::Zero());
+  // x -> A (x - center) + center for any linear map A (exact on the coefficients: the
+  // coordinates are linear in them). det A = 1 keeps the enclosed volume.
+  void transform(const Eigen::Matrix3d& A, const Eigen::Vector3d& center = Eigen::Vector3d::Zero());
 
   // Points at the poles (theta = 0 and pi).
   Eigen::Vector3d north_pole() const;

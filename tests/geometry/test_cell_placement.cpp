@@ -168,19 +168,60 @@ TEST(CellPlacement, NarrowTubeAlignsCellsWithTheAxis) {
   for (const PlacedCell& c : p.cells) EXPECT_NEAR(std::abs(c.rotation(2, 2)), 1.0, 1e-12);
 }
 
-// An undeformed red cell (diameter 2.77) does not fit a D = 2 tube in any orientation.
-TEST(CellPlacement, CellWiderThanTheTubeIsAnError) {
-  const VesselMesh wall = tube(TubeSpec{2.0, 2, Eigen::Vector3d(2.5, 2.5, 6), 0.2});
+// An undeformed red cell (diameter 2.77) fits a D = 2 tube in no orientation: the cells are
+// stacked along the axis at equal spacing and pre-deformed. Exact identities: the stretch is
+// symmetric with determinant 1, so the initial shapes keep the cell's volume to rounding; the
+// rest shapes are the reference turned, so they keep its area; the centroids sit on the axis
+// at spacing L / n. Geometry: every initial shape at least the gap inside the wall and from
+// the others (checked on the triangulations, independently of the placement's own test).
+TEST(CellPlacement, NarrowTubeGetsStackedPreDeformedCells) {
+  const Eigen::Vector3d box(2.5, 2.5, 9);
+  const VesselMesh wall = tube(TubeSpec{2.0, 2, box, 0.2});
+  const WallDistance distance(wall);
   PlacementSpec spec;
-  spec.box = Eigen::Vector3d(2.5, 2.5, 6);
+  spec.box = box;
+  spec.count = 2;  // H_T = 0.30, as data/cases/fahraeus/quick/tube_2_0.toml
+  spec.gap = kGap;
+  const SHSurface rbc = make_biconcave(12);
+  const Placement p = place_cells(rbc, spec, &wall);
+  ASSERT_EQ(p.cells.size(), 2u);
+  const Eigen::Vector3d& f = p.stretch_factors;
+  std::printf("D = 2, 2 cells: stretch %.3f along, %.3f across, %.3f through the thickness\n", f[0], f[1], f[2]);
+  EXPECT_NEAR(f.prod(), 1.0, 1e-12);
+  EXPECT_LT(f[1], 1.0);  // squeezed across the tube
+  const SHTransform t = SHTransform::gauss(24);
+  const double volume = enclosed_volume(rbc.geometry(t)), area = surface_area(rbc.geometry(t));
+  const std::vector<SHSurface> rest = placed_surfaces(rbc, p.cells), initial = initial_surfaces(rbc, p.cells);
+  for (std::size_t i = 0; i < p.cells.size(); ++i) {
+    const Eigen::Matrix3d& S = p.cells[i].stretch;
+    EXPECT_LT((S - S.transpose()).norm(), 1e-14);
+    EXPECT_NEAR(S.determinant(), 1.0, 1e-12);
+    EXPECT_NEAR(enclosed_volume(initial[i].geometry(t)) / volume, 1.0, 1e-12);
+    EXPECT_NEAR(surface_area(rest[i].geometry(t)) / area, 1.0, 1e-12);
+    EXPECT_GT(std::abs(surface_area(initial[i].geometry(t)) / area - 1.0), 1e-3);  // really deformed
+    const Eigen::Vector3d c = volume_centroid(initial[i].geometry(t));
+    EXPECT_NEAR(c.x(), 1.25, 0.02);  // on the axis (the mean of the wall's nodes)
+    EXPECT_NEAR(c.y(), 1.25, 0.02);
+    const double dz = std::fmod(c.z() - volume_centroid(initial[0].geometry(t)).z() + 9.0, 4.5);
+    EXPECT_NEAR(std::min(dz, 4.5 - dz), 0.0, 1e-9);
+  }
+  EXPECT_GE(smallest_separation(initial, box, spec.check_order), kGap);
+  EXPECT_GE(smallest_wall_distance(initial, distance, spec.check_order), kGap);
+}
+
+// A tube narrower than even a pre-deformed cell is an error that says so.
+TEST(CellPlacement, TubeTooNarrowEvenForPreDeformedCellsIsAnError) {
+  const VesselMesh wall = tube(TubeSpec{1.0, 2, Eigen::Vector3d(1.5, 1.5, 8), 0.15});
+  PlacementSpec spec;
+  spec.box = Eigen::Vector3d(1.5, 1.5, 8);
   spec.count = 1;
   spec.gap = 0.02;
   try {
     place_cells(make_biconcave(8), spec, &wall);
-    FAIL() << "a red cell should not fit a D = 2 tube";
+    FAIL() << "a red cell should not fit a D = 1 tube";
   } catch (const std::runtime_error& e) {
     std::printf("%s\n", e.what());
-    EXPECT_NE(std::string(e.what()).find("not even one cell fits"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("too narrow"), std::string::npos);
   }
 }
 
