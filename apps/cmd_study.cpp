@@ -95,7 +95,9 @@ void print_help() {
       "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n"
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
-      "  runs made separately with rbcflow run CASE.toml --out DIR/<case name>.\n");
+      "  runs made separately with rbcflow run CASE.toml --out DIR/<case name>.\n"
+      "  A run that fails (blow-up) is reported and left out; the others are still collected,\n"
+      "  and the exit status is then 1.\n");
 }
 
 }  // namespace
@@ -132,6 +134,7 @@ int run_study(Args& args) {
   CsvWriter csv(fs::path(out) / "study.csv", study_columns());
   StudyPlot plot;
   double hematocrit_sum = 0;
+  std::vector<std::string> failed;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     const std::string stem = case_files[k].stem().string();
@@ -140,7 +143,15 @@ int run_study(Args& args) {
     if (reuse && finished_run(c, c.output.dir, steps)) {
       if (!quiet) std::printf("reusing the finished run in %s\n", c.output.dir.c_str());
     } else {
-      run_case(RunRequest{c, {}, steps, quiet});
+      try {
+        run_case(RunRequest{c, {}, steps, quiet});
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::runtime_error& e) {  // the run failed (blow-up, unconverged GMRES): go on
+        std::fprintf(stderr, "rbcflow study: %s failed, left out of the study: %s\n", stem.c_str(), e.what());
+        failed.push_back(stem);
+        continue;
+      }
     }
     const SteadyAverage a = steady_average(c.output.dir / "diagnostics.csv", c.vessel->axis, fraction);
     const CsvTable diagnostics = read_csv(c.output.dir / "diagnostics.csv");
@@ -165,7 +176,8 @@ int run_study(Args& args) {
                 stem.c_str(), d_um, ht, hd, a.mean, a.standard_error, a.from_time, a.to_time, a.rows, pries,
                 100 * a.pressure_gradient_fluctuation);
   }
-  const double ht = hematocrit_sum / static_cast<double>(cases.size());
+  if (plot.diameter.empty()) throw std::runtime_error("rbcflow study: every run failed; nothing to plot");
+  const double ht = hematocrit_sum / static_cast<double>(plot.diameter.size());
   const auto [lo, hi] = std::minmax_element(plot.diameter.begin(), plot.diameter.end());
   const double d0 = std::max(1.0, *lo - 1.0), d1 = *hi + 1.0;
   for (int i = 0; i <= 200; ++i) {
@@ -182,7 +194,12 @@ int run_study(Args& args) {
   plot.reference_name = "Pries et al. 1992";
   plot_study(plot, fs::path(out) / "study.png");
   std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());
-  return 0;
+  if (failed.empty()) return 0;
+  std::string names;
+  for (const std::string& f : failed) names.append(names.empty() ? "" : ", ").append(f);
+  std::fprintf(stderr, "rbcflow study: %zu of %zu runs failed and are left out: %s\n", failed.size(), cases.size(),
+               names.c_str());
+  return 1;
 }
 
 }  // namespace rbcflow::cli
