@@ -98,6 +98,7 @@ int run_render(Args& args) {
     o.width = c.output.render_size[0];
     o.height = c.output.render_size[1];
     o.axis = flow_axis(c);
+    o.period = flow_period(c);
   }
   if (!field.empty()) o.field = field;
   if (!view_text.empty()) o.view = parse_view(view_text);

@@ -60,6 +60,7 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
   RenderOptions o;
   o.field = c.output.render_field;
   o.axis = c.vessel->axis;
+  o.period = flow_period(c);
   o.width = c.output.render_size[0];
   o.height = c.output.render_size[1];
   char label[128];

@@ -76,6 +76,7 @@ class RunOutput {
     render_.width = c.output.render_size[0];
     render_.height = c.output.render_size[1];
     render_.axis = flow_axis(c);
+    render_.period = flow_period(c);
     if (!c.cells) render_.field = "none";
   }
 

@@ -76,6 +76,10 @@ int flow_axis(const Case& c) {
   return 2;
 }
 
+double flow_period(const Case& c) {
+  return c.domain.kind == DomainKind::periodic ? c.domain.box[flow_axis(c)] : 0.0;
+}
+
 std::optional<double> vessel_volume(const Case& c) {
   if (!has_round_vessel(c)) return std::nullopt;
   const CaseVessel& v = *c.vessel;

@@ -28,6 +28,9 @@ double time_step(const Case& c);
 // otherwise the largest component of mean_velocity, pressure_gradient or the body force; z
 // when all are zero. Renders look across it (side) and along it (end).
 int flow_axis(const Case& c);
+// The box side along flow_axis in a periodic domain, 0 in a free one: renders draw each cell
+// wrapped into it (RenderOptions::period).
+double flow_period(const Case& c);
 
 // Volume and wall area of a tube or constriction over one period of the box; empty for
 // other vessels (known once meshed).

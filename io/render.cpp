@@ -18,6 +18,8 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -86,6 +88,23 @@ bool display_available() {
   return display && *display;
 }
 
+TriangleMesh cells_in_period(const Surface& s, int axis, double period) {
+  TriangleMesh m = s.mesh;
+  const SurfaceField* id = find_field(s, "cell");
+  if (!id || period <= 0) return m;
+  std::map<long, std::pair<double, int>> sums;  // cell -> (sum of coordinates, points)
+  for (Eigen::Index p = 0; p < m.points.rows(); ++p) {
+    auto& [sum, count] = sums[std::lround(id->values(p, 0))];
+    sum += m.points(p, axis);
+    ++count;
+  }
+  for (Eigen::Index p = 0; p < m.points.rows(); ++p) {
+    const auto& [sum, count] = sums[std::lround(id->values(p, 0))];
+    m.points(p, axis) -= period * std::floor(sum / count / period);
+  }
+  return m;
+}
+
 void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, const fs::path& png) {
   if (!display_available()) {
     throw std::runtime_error("cannot render " + png.string() +
@@ -138,7 +157,8 @@ void render_png(const std::vector<Surface>& surfaces, const RenderOptions& o, co
 
   for (const Surface& s : surfaces) {
     validate(s);
-    const vtkSmartPointer<vtkPolyData> poly = to_polydata(s.mesh, {});
+    const vtkSmartPointer<vtkPolyData> poly =
+        to_polydata(s.name == "wall" ? s.mesh : cells_in_period(s, o.axis, o.period), {});
     vtkNew<vtkActor> actor;
     if (s.name == "wall") {
       actor->SetMapper(mapper_for(poly));

@@ -21,7 +21,16 @@ struct RenderOptions {
   int height = 720;
   int axis = 2;        // the flow / vessel axis: side views look across it, end views along it
   std::string label;   // written in the top-left corner (e.g. "step 100   t = 0.5")
+  // > 0: the box side along `axis` of a periodic domain; each cell (by its "cell" field) is
+  // drawn shifted by whole periods so that its centroid lies in [0, period), inside the
+  // drawn vessel, however far it has travelled.
+  double period = 0;
 };
+
+// The mesh of a cells surface (merge_surfaces' "cell" field) with each cell shifted by whole
+// periods along `axis` so that its centroid (the mean of its points) lies in [0, period);
+// unchanged without that field or for period <= 0. What render_png draws for the cells.
+TriangleMesh cells_in_period(const Surface& cells, int axis, double period);
 
 // Surfaces named "wall" are drawn translucent; all others are cells. Writes `png`
 // atomically. Throws InputError when no cell surface has `field` (the message lists the

@@ -13,6 +13,8 @@
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "io/render.h"
@@ -72,6 +74,20 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
     bar->SetLegendVisibility(false);
   }
   vtkPlot* points = add(chart, vtkChart::POINTS, "simulation", s.diameter, s.value, blue, 3.0f);
+  // Headroom above the data and the band for the legend (top right), so that it hides no point.
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < s.diameter.size(); ++i) {
+    const double e = s.error[i] > 0 ? s.error[i] : 0.0;
+    lo = std::min(lo, s.value[i] - e);
+    hi = std::max(hi, s.value[i] + e);
+  }
+  for (double v : s.reference_low) lo = std::min(lo, v);
+  for (double v : s.reference_high) hi = std::max(hi, v);
+  if (lo < hi) {
+    const double span = hi - lo;
+    chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
+    chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - 0.05 * span, hi + 0.35 * span);
+  }
   if (auto* p = vtkPlotPoints::SafeDownCast(points)) p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
   write_png(view->GetRenderWindow(), png);
 }

@@ -148,3 +148,32 @@ TEST(Render, BadRequestsAreClearErrors) {
   setenv("DISPLAY", display.c_str(), 1);
   fs::remove_all(dir);
 }
+
+// Periodic runs: cells that travelled 2 and -1 periods (centroid means 2.5 + 16 and 5.5 - 8)
+// are drawn back in [0, 8), each shifted by whole periods only, its shape unchanged; the
+// wall and a free domain (period 0) are left alone.
+TEST(Render, CellsAreDrawnWrappedIntoThePeriod) {
+  std::vector<Surface> s = scene();
+  Surface& cells = s[0];
+  const Eigen::VectorXd id = cells.fields.back().values.col(0);
+  ASSERT_EQ(cells.fields.back().name, "cell");
+  TriangleMesh moved = cells.mesh;
+  for (Eigen::Index p = 0; p < id.size(); ++p) moved.points(p, 2) += id[p] < 0.5 ? 16.0 : -8.0;
+  cells.mesh = moved;
+  const TriangleMesh wrapped = cells_in_period(cells, 2, 8.0);
+  for (int k = 0; k < 2; ++k) {
+    double sum = 0;
+    int n = 0;
+    for (Eigen::Index p = 0; p < id.size(); ++p) {
+      if (std::lround(id[p]) != k) continue;
+      const double shift = wrapped.points(p, 2) - moved.points(p, 2);
+      EXPECT_NEAR(shift, k == 0 ? -16.0 : 8.0, 1e-12);
+      EXPECT_EQ(wrapped.points(p, 0), moved.points(p, 0));
+      sum += wrapped.points(p, 2);
+      ++n;
+    }
+    EXPECT_NEAR(sum / n, k == 0 ? 2.5 : 5.5, 1e-2);  // the reference cell's point mean is ~ its centroid
+  }
+  EXPECT_EQ(cells_in_period(cells, 2, 0.0).points, moved.points);
+  EXPECT_EQ(cells_in_period(s[1], 2, 8.0).points, s[1].mesh.points);  // the wall has no "cell" field
+}
