@@ -145,11 +145,11 @@ Placement stack_deformed(const SHSurface& reference, const PlacementSpec& spec, 
     return ((s_width * p.col(1)).array().square() + (s_thickness * p.col(2)).array().square()).sqrt().maxCoeff();
   };
   double s_axis = std::min(1.0, longest), s_width = 0.0;
-  for (; s_axis <= longest + 1e-12 && s_width == 0.0; s_axis += kSqueezeStep) {
+  for (; s_axis <= longest + 1e-12; s_axis += kSqueezeStep) {
     for (double w = 1.0; w >= kSmallestSqueeze && s_width == 0.0; w -= kSqueezeStep)
       if (widest(s_axis, w) <= fit_radius) s_width = w;
+    if (s_width > 0.0) break;
   }
-  s_axis -= kSqueezeStep;
   if (!(longest > 0) || s_width == 0.0) {
     throw std::runtime_error("cell placement: the tube (equivalent diameter " + percent(2.0 * lumen_radius) +
                              ") is too narrow for " + std::to_string(spec.count) +
