@@ -25,8 +25,11 @@ Eigen::Vector3d times(const std::array<double, 6>& k, const Eigen::Vector3d& v) 
 
 }  // namespace
 
+// The finest mode on the grid (degree ~ N) has sqrt(N) wavelengths across the patch radius
+// rho_1 = 2 pi / sqrt(N): three Gauss points per wavelength. Two (the former default, 8 at
+// N = 12) missed the l = 10 relaxation rate by 1.1%; nine or more points give <= 0.3%.
 int default_radial_points(int order) {
-  return std::max(8, static_cast<int>(std::ceil(2.0 * std::sqrt(static_cast<double>(order)))));
+  return std::max(8, static_cast<int>(std::ceil(3.0 * std::sqrt(static_cast<double>(order)))));
 }
 
 CellQuadratureGeometry::CellQuadratureGeometry(const SHCoeffs& x, std::shared_ptr<const CellGrids> grids,

@@ -27,3 +27,15 @@ TEST(CapsuleRelaxation, SlowModeRateMatchesTheoryLambda5) {
   std::printf("  l = 2 lambda = 5: measured %.5f theory %.5f  rel %.1e\n", w, th, std::abs(w / th - 1));
   EXPECT_NEAR(w / th, 1.0, 0.01);
 }
+
+// The highest degree each resolution carries (l = N - 2): the singular quadrature's polar patch
+// must resolve it. With 2 sqrt(N) radial patch points (the former default) these rates missed
+// by 1.1% (N = 12) and 13% (N = 16); with 3 sqrt(N) by 0.29% and 0.43% (the same figures as
+// from 500 steps of 1e-3).
+TEST(CapsuleRelaxation, HighestResolvedDegreesMatchTheory) {
+  for (const auto& [N, l] : {std::pair{12, 10}, std::pair{16, 14}}) {
+    const double w = measured_rate(l, 1.0, N, 0.005, 60), th = slow_mode(l, 1.0, 1.0, 3.5).w_slow;
+    std::printf("  N = %d l = %d lambda = 1: measured %.5f theory %.5f  rel %.1e\n", N, l, w, th, std::abs(w / th - 1));
+    EXPECT_NEAR(w / th, 1.0, 0.01) << "N = " << N << ", l = " << l;
+  }
+}

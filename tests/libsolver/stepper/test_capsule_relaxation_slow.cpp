@@ -3,19 +3,17 @@
 // secular equation (REFERENCES.md section 4). The paper reports < 0.2% at this resolution;
 // l = 10 is the largest degree N = 12 resolves (its Cartesian components reach degree 11).
 // Free space: the theory is for an unbounded fluid (the paper's box of side 20 adds ~(a/L)^3).
-// Measured (commit 8e5ceb6, 1 thread beside other jobs, ~25 min), relative error of w_slow:
+// Measured with the patch rule of 3 sqrt(N) radial points (11 x 22 at N = 12; 1 thread beside
+// another run, 778 s), relative error of w_slow:
 //   l        2       3       4       5       6       7       8       9       10
-//   lam = 1  2.9e-5  1.6e-4  3.3e-4  3.7e-4  5.3e-4  1.4e-3  1.3e-3  9.8e-4  1.06e-2
-//   lam = 5  1.4e-5  1.7e-4  3.5e-4  3.6e-4  5.0e-4  1.4e-3  1.3e-3  9.1e-4  1.09e-2
-// so the test FAILS at l = 10, the mode at the resolution limit (the paper reports < 0.2% for
-// every l at N = 12); with the patch points evaluated from the expansions
-// (spectral_interpolation) l = 10, lambda = 1 is -8.3e-3, with a Hermite grid refined 4x
-// -8.4e-3: interpolation is not the cause. The polar patch's radial rule is: l = 10 with
-// radial x angular patch points (default 8 x 16) 16 x 32: -2.0e-3; 12 x 24: -2.1e-3;
-// 16 x 16: -1.6e-3; 12 x 12: -1.0e-3 (lambda = 5: -1.0e-3), at about the default's cost
-// (144 against 128 points); l = 8 with 12 x 12: -1.9e-3 (default 1.3e-3); a patch 1.5x larger
-// at the default points: +3.6e-2 (session 5, /tmp driver, 500 steps each). A default of
-// 12 x 12 at N = 12 is the next step; it needs the whole sweep and suite re-run. Left failing.
+//   lam = 1  7.3e-5  1.2e-4  1.9e-4  3.4e-4  4.9e-4  1.0e-3  1.6e-3  2.4e-3  2.9e-3
+//   lam = 5  7.5e-5  1.2e-4  1.9e-4  3.4e-4  4.9e-4  1.1e-3  1.7e-3  2.4e-3  2.8e-3
+// With the former rule of 2 sqrt(N) (8 x 16 at N = 12) l = 10 missed by 1.06e-2 (lambda = 1)
+// and 1.09e-2 (lambda = 5), the other degrees as now. The polar patch's radial rule was the
+// cause (not the Hermite interpolation: spectral patch values -8.3e-3, a 4x finer Hermite grid
+// -8.4e-3): l = 10, lambda = 1 with radial x angular points 8 x 16 -1.06e-2; 9 x 18 -9.0e-4;
+// 10 x 20 -2.7e-3; 12 x 16 -2.2e-3; 12 x 24 -2.1e-3; 16 x 32 -2.0e-3. At N = 16 the l = 14
+// mode missed by 13% with 8 x 16 and by 0.42-0.49% with 12 x 16, 12 x 24 or 16 x 32.
 #include <gtest/gtest.h>
 
 #include <cmath>
