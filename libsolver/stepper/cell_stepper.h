@@ -82,13 +82,16 @@ struct StepReport {
 };
 
 // Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}
-// (the staggered coupling and AB2 use them; they are also the GMRES initial guesses).
+// (the staggered coupling and AB2 use them), and U^{n-2}, F^{n-2}: the GMRES initial guesses
+// are the linear extrapolations 2 U^{n-1} - U^{n-2} and 2 F^{n-1} - F^{n-2}.
 struct StepperState {
   double time = 0.0;
   long steps = 0;
   std::vector<SHCoeffs> shapes;
   Eigen::MatrixXd previous_velocity;  // empty before the first step
   PointField previous_wall_force;     // empty before the first step or without a wall
+  Eigen::MatrixXd older_velocity;     // empty before the second step
+  PointField older_wall_force;        // empty before the second step or without a wall
   std::vector<double> volume0, area0;
 };
 
@@ -122,7 +125,6 @@ class CellStepper {
   // X^{n+1}, collision removal and the volume constraint (advance() with cells).
   void move_cells(const FlowSolution& s, StepReport& report);
   int points_per_cell() const { return grids_ ? static_cast<int>(grids_->n_grid->grid().size()) : 0; }
-  FlowSolution solve_with(const Eigen::MatrixXd& previous_velocity, const PointField& previous_force) const;
 
   std::vector<Cell> cells_;
   std::shared_ptr<const CellGrids> grids_;
