@@ -119,8 +119,8 @@ Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
   Eigen::MatrixXd regular;
   if (double_plan_) {
     const PointField q = u.array().colwise() * nodes_.weight.array();
-    regular = double_plan_->double_layer(q, nodes_.normal) +
-              double_layer_linear_part(*domain_.box, nodes_.x, q, nodes_.normal, nodes_.x);
+    regular = double_plan_->double_layer(q, nodes_.normal);
+    regular.rowwise() += double_layer_linear_part(*domain_.box, nodes_.x, q, nodes_.normal, nodes_per_cell());
   } else {
     std::vector<int> self(nodes_.size());
     for (int t = 0; t < nodes_.size(); ++t) self[t] = t;

@@ -81,8 +81,8 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
   Eigen::MatrixXd regular;
   if (double_plan_) {
     const PointField q = u.array().colwise() * nodes.weight.array();
-    regular = double_plan_->double_layer(q, nodes.normal) +
-              double_layer_linear_part(*layers_.domain().box, nodes.x, q, nodes.normal, points_);
+    regular = double_plan_->double_layer(q, nodes.normal);
+    regular.rowwise() += double_layer_linear_part(*layers_.domain().box, nodes.x, q, nodes.normal, layers_.nodes_per_cell());
   } else {
     regular = regular_layer_sum(nodes, u, LayerKernel{Layer::double_, 0.0}, points_);
   }

@@ -87,8 +87,8 @@ inline IdentityErrors section8_identity_errors_periodic(const SHSurface& s, int 
   const Eigen::MatrixXd U = constant_density(nodes.size());
   const PointField q = U.array().colwise() * nodes.weight.array();
   const LayerCorrection double_correction(cell, LayerKernel{Layer::double_, dbl.xi()}, cell->node_targets());
-  const Eigen::MatrixXd dl = dbl.double_layer(q, nodes.normal) + double_layer_linear_part(box, nodes.x, q, nodes.normal, nodes.x) +
-                             double_correction.apply(U) + 4 * std::numbers::pi * U;
+  Eigen::MatrixXd dl = dbl.double_layer(q, nodes.normal) + double_correction.apply(U) + 4 * std::numbers::pi * U;
+  dl.rowwise() += double_layer_linear_part(box, nodes.x, q, nodes.normal, static_cast<int>(nodes.x.rows()));
   return identity_errors(nodes, sl, dl, U);
 }
 
