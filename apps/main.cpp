@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "io/input_error.h"
+#include "libsolver/stepper/step_memory.h"
 
 namespace {
 
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
     return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
+  rbcflow::reuse_freed_memory();  // time steps reuse the pages of the steps before
   Args args(command, std::vector<std::string>(argv + 2, argv + argc));
   try {
     if (command == "run") return run_run(args);

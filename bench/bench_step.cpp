@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "libsolver/stepper/step_memory.h"
 #include "step_cases.h"
 
 using namespace rbcflow;
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: bench_step single|minicase|tubeK [--steps K]  (tubeK: K cells, e.g. tube27)\n");
     return 2;
   }
+  reuse_freed_memory();  // as rbcflow does
   const std::string name = argv[1];
   int steps = 5;
   for (int i = 2; i + 1 < argc; i += 2) {
