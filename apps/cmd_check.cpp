@@ -9,6 +9,7 @@
 #include "io/case_derived.h"
 #include "io/cell_layout.h"
 #include "io/output_dir.h"
+#include "libsolver/operators/cell_layers.h"
 #include "libsolver/spme/ewald_parameters.h"
 
 namespace rbcflow::cli {
@@ -139,9 +140,9 @@ void print_output(const Case& c) {
 // One choice of the solver's Ewald chooser, indented under its heading; returns its grid's
 // bytes in the memory model.
 double print_choice(const std::string& what, EwaldKernel kernel, double tolerance, const PeriodicBox& box,
-                    long nodes) {
+                    long nodes, const RealSpaceUse& real_space = {}) {
   std::printf("         %s (%ld nodes):\n", what.c_str(), nodes);
-  const EwaldChoice choice = choose_ewald_parameters(kernel, tolerance, box, nodes);
+  const EwaldChoice choice = choose_ewald_parameters(kernel, tolerance, box, nodes, nodes, real_space);
   std::istringstream lines(to_string(choice));
   std::string line;
   std::getline(lines, line);  // the heading repeats the kernel and tolerance
@@ -161,7 +162,8 @@ void print_ewald(const Case& c, std::optional<int> count, MemoryEstimate& memory
     std::printf("\n");
     grids += print_choice("cells, single layer", EwaldKernel::stokeslet, e.tolerance, box, nodes);
     if (c.domain.viscosity_ratio != 1.0) {
-      grids += print_choice("cells, double layer", EwaldKernel::stresslet, e.tolerance, box, nodes);
+      grids += print_choice("cells, double layer", EwaldKernel::stresslet, e.tolerance, box, nodes,
+                            kDoubleLayerRealSpace);
     }
   } else if (c.cells) {
     std::printf(" (the cells' sums are chosen once the vessel is meshed and the count is known)\n");

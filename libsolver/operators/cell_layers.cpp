@@ -35,7 +35,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     xi_single = single_plan_->xi();
     if (with_double_layer) {
       double_plan_ = std::make_unique<EwaldPlan>(
-          ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np), nodes_.x);
+          ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
+                     kDoubleLayerRealSpace),
+          nodes_.x);
       xi_double = double_plan_->xi();
     }
   }

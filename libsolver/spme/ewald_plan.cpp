@@ -13,9 +13,6 @@ double seconds_between(std::chrono::steady_clock::time_point a,
   return std::chrono::duration<double>(b - a).count();
 }
 
-// Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 0.8 GB).
-constexpr std::int64_t kMaxKeptPairs = 50'000'000;
-
 }  // namespace
 
 std::vector<double>* EwaldPlan::kept(std::vector<double>& coefficients) const {

@@ -24,6 +24,7 @@
 // The real-space kernel coefficients of every pair are kept from the first product of each
 // layer (real_space_sum.h; up to 5e7 pairs), so later products cost a few flops per pair.
 // Products modify work arrays: one thread at a time per plan; each product is OpenMP-parallel.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,9 @@
 #include "spme_plan.h"
 
 namespace rbcflow {
+
+// Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 0.8 GB).
+inline constexpr std::int64_t kMaxKeptPairs = 50'000'000;
 
 struct EwaldTimings {
   double real_space = 0.0;
