@@ -134,6 +134,11 @@ DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, 
     row.wall_residual = r.wall_residual;
   }
   row.seconds = seconds;
+  if (c.time.collision_threshold > 0 && !stepper.cells().empty()) {
+    row.collision_pairs = r.collision_pairs;
+    row.wall_contacts = r.wall_contacts;
+    row.collision_displacement = r.collision_displacement;
+  }
   return row;
 }
 

@@ -63,6 +63,8 @@ void truncate_after(const fs::path& path, const std::string& header, long resume
   });
 }
 
+std::string csv_integer(const std::optional<int>& x) { return x ? std::to_string(*x) : std::string(); }
+
 // The fields of one row, in column order.
 struct Row {
   std::vector<std::string> fields;
@@ -88,7 +90,7 @@ const std::vector<std::string>& diagnostics_columns() {
       "step", "time", "dt", "mean_velocity_x", "mean_velocity_y", "mean_velocity_z",
       "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z", "effective_viscosity",
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
-      "wall_residual", "seconds"};
+      "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement"};
   return columns;
 }
 
@@ -129,8 +131,10 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(r.mean_velocity).add(r.pressure_gradient);
   row.add(csv_number(r.effective_viscosity)).add(csv_number(r.tube_hematocrit));
   row.add(csv_number(r.max_volume_error)).add(csv_number(r.max_area_error));
-  row.add(std::to_string(r.gmres_cells)).add(r.gmres_wall ? std::to_string(*r.gmres_wall) : std::string());
+  row.add(std::to_string(r.gmres_cells)).add(csv_integer(r.gmres_wall));
   row.add(csv_number(r.wall_residual)).add(csv_number(r.seconds));
+  row.add(csv_integer(r.collision_pairs)).add(csv_integer(r.wall_contacts));
+  row.add(csv_number(r.collision_displacement));
   csv_.write(row.fields);
 }
 

@@ -27,6 +27,10 @@ struct DiagnosticsRow {
   std::optional<int> gmres_wall;        // empty without a wall
   std::optional<double> wall_residual;  // empty without a wall
   double seconds = 0;                   // wall-clock time of the step
+  // Collision removal (section 11.2); empty when it is off (h_s = 0).
+  std::optional<int> collision_pairs;             // cell pairs closer than h_s, periodic images included
+  std::optional<int> wall_contacts;               // cells closer than h_s to the wall
+  std::optional<double> collision_displacement;   // largest push of a grid point
 };
 
 struct CellRow {

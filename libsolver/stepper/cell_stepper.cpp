@@ -227,6 +227,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     for (int c = 0; c < nc; ++c) cells_[c].shape = std::move(shapes[c]);
     report.collision_pairs = k.cell_pairs;
     report.wall_contacts = k.wall_contacts;
+    report.collision_displacement = k.max_displacement;
   }
   for (int c = 0; c < nc; ++c) {
     if (options_.volume_constraint) enforce_volume(c);

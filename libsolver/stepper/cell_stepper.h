@@ -77,8 +77,11 @@ struct StepReport {
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();
   double max_volume_error = 0.0;  // relative to each cell's initial volume, after the step
   double max_area_error = 0.0;
-  int collision_pairs = 0;   // cell pairs and cell-wall contacts closer than h_s, removed
+  // Collision removal (section 11.2), when h_s > 0: cell pairs (periodic images included) and
+  // cells at the wall found closer than h_s, and the largest displacement of a grid point.
+  int collision_pairs = 0;
   int wall_contacts = 0;
+  double collision_displacement = 0.0;
 };
 
 // Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}

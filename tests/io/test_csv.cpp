@@ -46,7 +46,8 @@ TEST(Csv, DiagnosticsHeaderIsTheContract) {
   EXPECT_EQ(first_line(dir / "diagnostics.csv"),
             "step,time,dt,mean_velocity_x,mean_velocity_y,mean_velocity_z,pressure_gradient_x,"
             "pressure_gradient_y,pressure_gradient_z,effective_viscosity,tube_hematocrit,max_volume_error,"
-            "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds");
+            "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds,collision_pairs,wall_contacts,"
+            "collision_displacement");
   { CellsCsv c(dir / "cells.csv"); }
   EXPECT_EQ(first_line(dir / "cells.csv"),
             "step,time,cell,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,volume,area,"
@@ -63,6 +64,9 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   tube.tube_hematocrit = 0.26;
   tube.gmres_wall = 30;
   tube.wall_residual = 1e-9;
+  tube.collision_pairs = 3;
+  tube.wall_contacts = 0;
+  tube.collision_displacement = 0.0125;
   d.write(tube);
   // Read while the writer is still open: the rows are on disk.
   const CsvTable t = read_csv(dir / "diagnostics.csv");
@@ -70,8 +74,13 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   EXPECT_EQ(t.rows[0][t.column("effective_viscosity")], "");
   EXPECT_EQ(t.rows[0][t.column("gmres_wall")], "");
   EXPECT_EQ(t.rows[0][t.column("wall_residual")], "");
+  EXPECT_EQ(t.rows[0][t.column("collision_pairs")], "");
+  EXPECT_EQ(t.rows[0][t.column("collision_displacement")], "");
   EXPECT_EQ(t.rows[1][t.column("effective_viscosity")], "1.7");
   EXPECT_EQ(t.rows[1][t.column("gmres_wall")], "30");
+  EXPECT_EQ(t.rows[1][t.column("collision_pairs")], "3");
+  EXPECT_EQ(t.rows[1][t.column("wall_contacts")], "0");
+  EXPECT_EQ(t.rows[1][t.column("collision_displacement")], "0.0125");
   EXPECT_EQ(std::strtod(t.rows[0][t.column("pressure_gradient_z")].c_str(), nullptr), -1.0 / 3.0);
   EXPECT_EQ(t.rows[1][t.column("step")], "2");
 
