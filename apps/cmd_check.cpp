@@ -5,12 +5,14 @@
 #include <string>
 
 #include "cli.h"
+#include "geometry/sph_transform.h"
 #include "io/case.h"
 #include "io/case_derived.h"
 #include "io/cell_layout.h"
 #include "io/output_dir.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/spme/ewald_parameters.h"
+#include "run_setup.h"
 
 namespace rbcflow::cli {
 namespace {
@@ -70,6 +72,29 @@ void print_vessel(const Case& c, const MemoryEstimate& memory) {
   std::printf("\n");
 }
 
+// How run will place the cells. In a straight tube narrower than an undeformed cell's largest
+// diameter plus the placement gap on both sides, no undeformed cell fits: run stacks them on
+// the axis, pre-deformed (geometry/cell_placement.h).
+void print_placement(const Case& c) {
+  const CaseCells& k = *c.cells;
+  if (!k.positions.empty()) {
+    std::printf(", at the listed positions\n");
+    return;
+  }
+  if (c.vessel && c.vessel->kind == VesselKind::tube) {
+    const SHSurface reference = reference_shape(k, k.order);
+    const double diameter = 2.0 * reference.geometry(SHTransform::gauss(k.order)).x.rowwise().norm().maxCoeff();
+    const double fits = diameter + 2.0 * placement_gap(c);
+    if (c.vessel->diameter < fits) {
+      std::printf(",\n         stacked on the axis and pre-deformed (seed %d): D = %g is below %.3f, the cell's "
+                  "largest diameter plus twice the gap %g\n",
+                  k.seed, c.vessel->diameter, fits, placement_gap(c));
+      return;
+    }
+  }
+  std::printf(", placed at random (seed %d)\n", k.seed);
+}
+
 void print_cells(const Case& c, std::optional<int> count) {
   if (!c.cells) {
     std::printf("cells:   none\n");
@@ -87,7 +112,7 @@ void print_cells(const Case& c, std::optional<int> count) {
     if (const auto h = tube_hematocrit(c, *count)) std::printf(", tube hematocrit %.3f", *h);
   }
   if (k.hematocrit && count) std::printf(" (asked %g)", *k.hematocrit);
-  std::printf(k.positions.empty() ? ", placed at random (seed %d)\n" : ", at the listed positions\n", k.seed);
+  print_placement(c);
   const int n = k.order, m = k.order * k.dealias;
   std::printf("         grid N = %d: %d x %d points, %d modes; de-aliasing M = %d: %d x %d points\n", n, n, 2 * n,
               n * n, m, m, 2 * m);

@@ -80,7 +80,7 @@ PlacedShapes random_cells(const Case& c, const VesselMesh* vessel) {
   PlacementSpec spec;
   spec.box = to_eigen(c.domain.box);
   spec.count = count;
-  spec.gap = std::max(c.time.collision_threshold, kMinimumPlacementGap);
+  spec.gap = placement_gap(c);
   spec.seed = static_cast<std::uint64_t>(k.seed);
   Placement p;
   try {
@@ -112,6 +112,8 @@ TubeDrive tube_drive(const Case& c) {
 }
 
 }  // namespace
+
+double placement_gap(const Case& c) { return std::max(c.time.collision_threshold, kMinimumPlacementGap); }
 
 RunSetup setup_run(const Case& c) {
   RunSetup r;

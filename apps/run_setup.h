@@ -25,4 +25,8 @@ struct RunSetup {
 // Throws CaseError for what only shows once meshed or placed (cells outside the vessel).
 RunSetup setup_run(const Case& c);
 
+// The smallest cell-cell and cell-wall distance of cells placed at random: the collision
+// threshold h_s, and at least 0.05.
+double placement_gap(const Case& c);
+
 }  // namespace rbcflow::cli
