@@ -36,7 +36,7 @@ const std::vector<std::string>& study_columns() {
   static const std::vector<std::string> c = {
       "case", "diameter", "diameter_um", "tube_hematocrit", "discharge_hematocrit", "order", "cells", "steps",
       "time", "steady_from", "rows_averaged", "effective_viscosity", "effective_viscosity_stderr", "pries",
-      "pressure_gradient_fluctuation"};
+      "pressure_gradient_fluctuation", "effective_viscosity_drift"};
   return c;
 }
 
@@ -166,16 +166,17 @@ int run_study(Args& args) {
     csv.write({stem, csv_number(c.vessel->diameter), csv_number(d_um), csv_number(ht), csv_number(hd),
                std::to_string(c.cells->order), std::to_string(n_cells), std::to_string(diagnostics.rows.size()),
                csv_number(a.to_time), csv_number(a.from_time), std::to_string(a.rows), csv_number(a.mean),
-               csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation)});
+               csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation),
+               csv_number(a.drift)});
     if (c.output.vtk) render_tube(c.output.dir, c, out, stem);
     plot.diameter.push_back(d_um);
     plot.value.push_back(a.mean);
     plot.error.push_back(a.standard_error);
     hematocrit_sum += ht;
-    std::printf("%s: D = %.2f um, H_T = %.3f (H_D = %.3f): mu_eff = %.4f +- %.4f over t in [%.4g, %.4g] (%ld rows); "
-                "Pries %.4f; <grad p> fluctuation %.2f%%\n",
-                stem.c_str(), d_um, ht, hd, a.mean, a.standard_error, a.from_time, a.to_time, a.rows, pries,
-                100 * a.pressure_gradient_fluctuation);
+    std::printf("%s: D = %.2f um, H_T = %.3f (H_D = %.3f): mu_eff = %.4f +- %.4f over t in [%.4g, %.4g] (%ld rows), "
+                "drift %+.2f%%; Pries %.4f; <grad p> fluctuation %.2f%%\n",
+                stem.c_str(), d_um, ht, hd, a.mean, a.standard_error, a.from_time, a.to_time, a.rows, 100 * a.drift,
+                pries, 100 * a.pressure_gradient_fluctuation);
   }
   if (plot.diameter.empty()) throw std::runtime_error("rbcflow study: every run failed; nothing to plot");
   const double ht = hematocrit_sum / static_cast<double>(plot.diameter.size());

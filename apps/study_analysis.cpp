@@ -54,6 +54,7 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
     for (double x : means) var += (x - m) * (x - m);
     a.standard_error = std::sqrt(var / (batches - 1) / batches);
   }
+  if (n >= 2) a.drift = (mean_of(viscosity, n - n / 2, n) - mean_of(viscosity, 0, n / 2)) / a.mean;
   const double g = mean_of(gradient, 0, n);
   const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
   a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;

@@ -1,7 +1,8 @@
 #pragma once
 // The statistics of a tube study (paper section 11.2): from a run's diagnostics.csv, the
 // effective viscosity (45)-(46) averaged over the statistically steady part of the run, its
-// standard error by batch means, and the fluctuation of the mean pressure gradient.
+// standard error by batch means, its drift across the averaged part, and the fluctuation of the
+// mean pressure gradient.
 #include <filesystem>
 
 namespace rbcflow::cli {
@@ -12,6 +13,9 @@ struct SteadyAverage {
   double to_time = 0;
   double mean = 0;           // effective viscosity
   double standard_error = 0; // batch means (up to 10 batches; 0 with fewer than 4 rows)
+  // (mean over the second half of the steady part - mean over its first half) / mean: a run
+  // still settling shows a drift larger than a few standard errors (0 with fewer than 2 rows).
+  double drift = 0;
   double pressure_gradient_fluctuation = 0;  // (max - min) / |mean| of <dp/ds> along the axis
 };
 

@@ -1,0 +1,94 @@
+// The statistics of rbcflow study (apps/study_analysis.h) on synthetic diagnostics whose
+// answers are known: the steady window, the mean, the batch-means standard error of white
+// noise, the drift of a linear trend and the pressure-gradient fluctuation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "apps/study_analysis.h"
+#include "io/csv.h"
+
+using namespace rbcflow;
+namespace fs = std::filesystem;
+
+namespace {
+
+// diagnostics.csv with `rows` steps of dt = 0.01: effective viscosity mu(t), pressure gradient
+// along z g(t); the other columns are not read by steady_average.
+fs::path write_diagnostics(const std::string& name, int rows, const std::function<double(int)>& mu,
+                           const std::function<double(int)>& g) {
+  const fs::path path = fs::temp_directory_path() / ("rbcflow_test_study_analysis_" + name + ".csv");
+  fs::remove(path);
+  CsvWriter csv(path, {"step", "time", "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z",
+                       "effective_viscosity"});
+  for (int i = 1; i <= rows; ++i) {
+    csv.write({std::to_string(i), csv_number(0.01 * i), "0", "0", csv_number(g(i)), csv_number(mu(i))});
+  }
+  return path;
+}
+
+}  // namespace
+
+TEST(StudyAnalysis, AveragesTheSteadyPartOfAConstantSeries) {
+  const fs::path csv = write_diagnostics("constant", 100, [](int) { return 1.25; }, [](int) { return -40.0; });
+  const cli::SteadyAverage a = cli::steady_average(csv, 2, 0.5);
+  EXPECT_EQ(a.rows, 51);  // t = 0.50 .. 1.00
+  EXPECT_DOUBLE_EQ(a.from_time, 0.5);
+  EXPECT_DOUBLE_EQ(a.to_time, 1.0);
+  EXPECT_DOUBLE_EQ(a.mean, 1.25);
+  EXPECT_EQ(a.standard_error, 0.0);
+  EXPECT_EQ(a.drift, 0.0);
+  EXPECT_EQ(a.pressure_gradient_fluctuation, 0.0);
+}
+
+// White noise of standard deviation s: the batch means estimate s / sqrt(n). With 10 batches
+// the estimate has 9 degrees of freedom, so its relative spread is about 1 / sqrt(18) = 24%;
+// the bounds below are beyond 3 of those spreads on each side.
+TEST(StudyAnalysis, BatchMeansErrorOfWhiteNoise) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::vector<double> mu(2001);
+  for (double& m : mu) m = 1.3 + noise(rng);
+  const fs::path csv = write_diagnostics("noise", 2000, [&](int i) { return mu[i]; }, [](int) { return -40.0; });
+  const cli::SteadyAverage a = cli::steady_average(csv, 2, 0.5);
+  ASSERT_EQ(a.rows, 1001);
+  const double expected = 0.02 / std::sqrt(1001.0);
+  EXPECT_NEAR(a.mean, 1.3, 4 * expected);
+  EXPECT_GT(a.standard_error, 0.3 * expected);
+  EXPECT_LT(a.standard_error, 1.8 * expected);
+  EXPECT_LT(std::abs(a.drift), 8 * expected / 1.3);  // two halves: difference spread 2 s / sqrt(n)
+}
+
+// mu = 1 + 0.2 t over the window [0.5, 1]: the second half's mean exceeds the first half's
+// by 0.2 x (half the window) exactly, relative to the mean 1.15.
+TEST(StudyAnalysis, DriftOfALinearTrend) {
+  const fs::path csv =
+      write_diagnostics("trend", 100, [](int i) { return 1.0 + 0.2 * (0.01 * i); }, [](int) { return -40.0; });
+  const cli::SteadyAverage a = cli::steady_average(csv, 2, 0.5);
+  ASSERT_EQ(a.rows, 51);  // halves of 25 rows: t = 0.50..0.74 and 0.76..1.00
+  EXPECT_NEAR(a.mean, 1.15, 1e-12);
+  EXPECT_NEAR(a.drift, 0.2 * 0.26 / 1.15, 1e-12);
+}
+
+TEST(StudyAnalysis, PressureGradientFluctuation) {
+  // g = -40 (1 + 0.01 sin): (max - min) / |mean| over the window.
+  const fs::path csv = write_diagnostics("gradient", 400, [](int) { return 1.2; },
+                                         [](int i) { return -40.0 * (1.0 + 0.01 * std::sin(0.1 * i)); });
+  const cli::SteadyAverage a = cli::steady_average(csv, 2, 0.5);
+  EXPECT_NEAR(a.pressure_gradient_fluctuation, 0.02, 2e-4);  // sampled sine: extremes within 1%
+}
+
+TEST(StudyAnalysis, RefusesAFileWithoutEffectiveViscosity) {
+  // A case without a straight tube leaves the column empty.
+  const fs::path csv = fs::temp_directory_path() / "rbcflow_test_study_analysis_no_tube.csv";
+  {
+    CsvWriter empty(csv, {"step", "time", "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z",
+                          "effective_viscosity"});
+    empty.write({"1", "0.01", "0", "0", "-1", ""});
+  }
+  EXPECT_THROW(cli::steady_average(csv, 2, 0.5), std::runtime_error);
+}
