@@ -36,7 +36,7 @@ void ensure_display() {
     argv.push_back(all.substr(start, end - start));
     start = end == std::string::npos ? all.size() : end + 1;
   }
-  std::vector<const char*> args = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", self};
+  std::vector<const char*> args = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset", self};
   for (std::size_t i = 1; i < argv.size(); ++i) args.push_back(argv[i].c_str());
   args.push_back(nullptr);
   ::setenv("RBCFLOW_UNDER_XVFB", "1", 1);

@@ -96,6 +96,9 @@ void plot_diagnostics(const fs::path& csv, const fs::path& png, int width, int h
 
   vtkNew<vtkContextView> view;
   view->GetRenderer()->SetBackground(1, 1, 1);
+  // No interactor: a picture needs no events, and the interactor's own X connection crashed
+  // (XSync on a failed XOpenDisplay) when several processes rendered on one Xvfb.
+  view->SetInteractor(nullptr);
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(width, height);
   vtkNew<vtkChartMatrix> matrix;

@@ -51,6 +51,9 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
   }
   vtkNew<vtkContextView> view;
   view->GetRenderer()->SetBackground(1, 1, 1);
+  // No interactor: a picture needs no events, and the interactor's own X connection crashed
+  // (XSync on a failed XOpenDisplay) when several processes rendered on one Xvfb.
+  view->SetInteractor(nullptr);
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(width, height);
   vtkNew<vtkChartXY> chart;

@@ -14,7 +14,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRBCFLOW_WERROR=ON
 cmake --build build -j "$jobs"
 
 # VTK renders only through X: tests run under a virtual display (see docs/rendering.md).
-run_ctest() { xvfb-run -a -s "-screen 0 1280x1024x24" ctest "$@"; }
+run_ctest() { xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest "$@"; }
 
 if [ "${RBCFLOW_TEST_LABELS:-}" = "slow" ]; then
   run_ctest --test-dir build --output-on-failure -j "$jobs"
