@@ -7,13 +7,13 @@
 #include <Eigen/Core>
 
 #include "libsolver/operators/cell_layers.h"
-#include "libsolver/stepper/gmres.h"
+#include "libsolver/wall/preconditioned_gmres.h"
 
 namespace rbcflow {
 
 struct VelocitySolve {
   Eigen::MatrixXd velocity;  // stacked nodes x 3
-  GmresResult gmres;         // iterations 0 for lambda = 1
+  GmresReport gmres;         // iterations 0 for lambda = 1
 };
 
 // mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3.

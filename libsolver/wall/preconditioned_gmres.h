@@ -2,7 +2,8 @@
 // Restarted GMRES (Saad & Schultz 1986) with right preconditioning: solves A M^{-1} y = b,
 // x = M^{-1} y, so the residual it monitors is the true one, |b - A x| / |b|. A and M^{-1}
 // are callables Eigen::VectorXd(const Eigen::VectorXd&). Modified Gram-Schmidt, Givens
-// rotations; the initial guess is x.
+// rotations; the initial guess is x. The one GMRES of rbcflow: the wall solve (12) uses it
+// preconditioned and recycled, the cells' solve (10) plain (gmres below).
 //
 // Krylov recycling (GCRO, de Sturler 1999; Parks et al., SIAM J. Sci. Comput. 28, 2006) for a
 // sequence of systems with the same A and M: a RecycledSpace holds U and C with
@@ -14,6 +15,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace rbcflow {
@@ -129,6 +131,14 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     x += M_inv(z);
     if (recycled && recycled->growing && !breakdown) recycled->grow(V, Hbar, B, k);
   }
+}
+
+// Unpreconditioned (M = I): for operators as well conditioned as the cells' A11 of (10).
+template <typename Operator>
+GmresReport gmres(Operator&& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance, int max_iterations,
+                  int restart = 60) {
+  return preconditioned_gmres(std::forward<Operator>(A), [](const Eigen::VectorXd& v) { return v; }, b, x, tolerance,
+                              max_iterations, restart);
 }
 
 }  // namespace rbcflow
