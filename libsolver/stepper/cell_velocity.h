@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "libsolver/operators/cell_layers.h"
-#include "libsolver/wall/preconditioned_gmres.h"
+#include "libsolver/linear/preconditioned_gmres.h"
 
 namespace rbcflow {
 

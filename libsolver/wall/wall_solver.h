@@ -9,7 +9,7 @@
 #include <Eigen/SparseLU>
 #include <vector>
 
-#include "preconditioned_gmres.h"
+#include "libsolver/linear/preconditioned_gmres.h"
 #include "wall_operator.h"
 
 namespace rbcflow {

@@ -1,4 +1,4 @@
-// GMRES with Krylov recycling (libsolver/wall/preconditioned_gmres.h) on a dense
+// GMRES with Krylov recycling (libsolver/linear/preconditioned_gmres.h) on a dense
 // non-symmetric matrix with a cluster of small eigenvalues (the slow modes recycling is for):
 // the recycled space satisfies its defining relations to rounding, a solve with it reaches
 // the same solution to the tolerance, and later right-hand sides take fewer iterations.
@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <random>
 
-#include "libsolver/wall/preconditioned_gmres.h"
+#include "libsolver/linear/preconditioned_gmres.h"
 
 using namespace rbcflow;
 
