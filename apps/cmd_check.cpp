@@ -74,7 +74,7 @@ void print_vessel(const Case& c, const MemoryEstimate& memory) {
 
 // How run will place the cells. In a straight tube narrower than an undeformed cell's largest
 // diameter plus the placement gap on both sides, no undeformed cell fits: run stacks them on
-// the axis, pre-deformed (geometry/cell_placement.h).
+// the axis, pre-deformed as cells.narrow_start says (geometry/cell_placement.h).
 void print_placement(const Case& c) {
   const CaseCells& k = *c.cells;
   if (!k.positions.empty()) {
@@ -86,8 +86,9 @@ void print_placement(const Case& c) {
     const double diameter = 2.0 * reference.geometry(SHTransform::gauss(k.order)).x.rowwise().norm().maxCoeff();
     const double fits = diameter + 2.0 * placement_gap(c);
     if (c.vessel->diameter < fits) {
-      std::printf(",\n         stacked on the axis and pre-deformed (seed %d): D = %g is below %.3f, the cell's "
+      std::printf(",\n         stacked on the axis and pre-deformed (%s, seed %d): D = %g is below %.3f, the cell's "
                   "largest diameter plus twice the gap %g\n",
+                  k.narrow_start == NarrowStartKind::parachute ? "folded face-on into parachutes" : "stretched edge-on",
                   k.seed, c.vessel->diameter, fits, placement_gap(c));
       return;
     }

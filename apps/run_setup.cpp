@@ -82,14 +82,21 @@ PlacedShapes random_cells(const Case& c, const VesselMesh* vessel) {
   spec.count = count;
   spec.gap = placement_gap(c);
   spec.seed = static_cast<std::uint64_t>(k.seed);
+  spec.narrow_start = k.narrow_start == NarrowStartKind::parachute ? NarrowStart::parachute : NarrowStart::stretched;
+  if (c.domain.mean_velocity) spec.flow = to_eigen(*c.domain.mean_velocity);
+  if (c.domain.tube_velocity && c.vessel) spec.flow = *c.domain.tube_velocity * Eigen::Vector3d::Unit(c.vessel->axis);
   Placement p;
   try {
     p = place_cells(reference, spec, vessel);
   } catch (const std::runtime_error& e) {
     throw case_error(c, k.hematocrit ? "cells.hematocrit" : "cells.count", e.what());
   }
-  PlacedShapes out{placed_surfaces(reference, p.cells), initial_surfaces(reference, p.cells), std::nullopt};
-  if (p.stretch_factors != Eigen::Vector3d::Ones()) {
+  PlacedShapes out{placed_surfaces(reference, p.cells), initial_surfaces(reference, p), std::nullopt};
+  if (p.parachute) {
+    out.note = "cells: the tube is narrower than a cell; placed stacked along the axis, folded face-on into "
+               "parachutes (radius " + fixed(p.parachute_radius) + ", length " + fixed(p.parachute_length) +
+               "; area and volume kept, the membranes' rest shape undeformed)";
+  } else if (p.stretch_factors != Eigen::Vector3d::Ones()) {
     const Eigen::Vector3d& f = p.stretch_factors;
     out.note = "cells: the tube is narrower than a cell; placed stacked along the axis, pre-deformed (stretched " +
                fixed(f[0]) + " along the axis, " + fixed(f[1]) + " across, " + fixed(f[2]) +

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "cell_overlap.h"
+#include "parachute_fold.h"
 #include "wall_distance.h"
 
 namespace rbcflow {
@@ -122,73 +124,132 @@ std::string percent(double x) {
   return buf;
 }
 
-// The narrowest tubes: `count` cells at equal spacing along the axis through the lumen's centre
-// (one random offset for the stack, a random turn about the axis for each cell), each stretched
-// in its own frame by diag(s_axis, s_width, s_thickness), product 1: the plane of the cell
-// (the reference's x-y) contains the tube axis (along the reference's x); s_axis is the first
-// value from min(1, what the spacing allows) upwards for which a width factor s_width fits the
-// cell in the lumen, and s_width the largest such; the thickness keeps the volume. The faces'
-// area changes by s_axis s_width only: the red cell's membrane is stiff in dilatation.
-Placement stack_deformed(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh& vessel,
-                         const WallDistance& wall, int a, double lumen, std::mt19937_64& rng) {
-  const double length = spec.box[a], spacing = length / spec.count;
-  const double lumen_radius = std::sqrt(lumen / (std::numbers::pi * length));
-  const double fit_radius = (1.0 - kStackMargin) * lumen_radius - spec.gap;
+// The narrowest tubes. Their geometry: the spacing of `count` cells along axis `a`, the lumen's
+// equivalent radius, the radius a deformed cell may fill (the margin and the gap kept free
+// against the facets of the meshed wall).
+struct NarrowTube {
+  int axis;
+  double length, spacing, lumen_radius, fit_radius;
+
+  NarrowTube(const PlacementSpec& spec, int a, double lumen)
+      : axis(a), length(spec.box[a]), spacing(length / spec.count),
+        lumen_radius(std::sqrt(lumen / (std::numbers::pi * length))),
+        fit_radius((1.0 - kStackMargin) * lumen_radius - spec.gap) {}
+};
+
+// `count` cells of the shape `overlap` at equal spacing along the axis through the lumen's
+// centre (one random offset for the stack, a random turn about the axis for each cell, given to
+// `rotation`); `what` names the shape in the error when they do not fit.
+std::vector<PlacedCell> stack_on_axis(const CellOverlap& overlap, const PlacementSpec& spec, const VesselMesh& vessel,
+                                      const NarrowTube& tube, std::mt19937_64& rng,
+                                      const std::function<Eigen::Matrix3d(const Eigen::Vector3d&)>& rotation,
+                                      const std::string& what) {
+  const Problem problem{spec, overlap, nullptr};
+  const int a = tube.axis;
+  // The lumen's centre in the cross-section: the mean of the wall's nodes.
+  Eigen::Vector3d centre = vessel.surface.points.colwise().mean().transpose();
+  const Eigen::Vector3d u = Eigen::Vector3d::Unit((a + 1) % 3), v = Eigen::Vector3d::Unit((a + 2) % 3);
+  centre[a] = tube.spacing * uniform(rng);
+  std::vector<CellPose> poses;
+  std::vector<PlacedCell> out;
+  for (int k = 0; k < spec.count; ++k) {
+    const double turn = 2.0 * std::numbers::pi * uniform(rng);
+    CellPose pose;
+    pose.rotation = rotation(std::cos(turn) * u + std::sin(turn) * v);
+    pose.position = centre + k * tube.spacing * Eigen::Vector3d::Unit(a);
+    pose.position[a] = std::fmod(pose.position[a], tube.length);
+    if (!problem.fits(pose, poses)) {
+      throw std::runtime_error("cell placement: " + std::to_string(spec.count) + " cells " + what +
+                               " do not fit at spacing " + percent(tube.spacing) + " (gap " + percent(spec.gap) +
+                               "): lower the count or hematocrit");
+    }
+    poses.push_back(pose);
+    out.push_back({pose.position, pose.rotation});
+  }
+  return out;
+}
+
+// Edge-on: each cell stretched in its own frame by diag(s_axis, s_width, s_thickness), product
+// 1: the plane of the cell (the reference's x-y) contains the tube axis (along the reference's
+// x). s_width is the largest factor that fits the cell in the lumen with s_axis = 1 / s_width,
+// which keeps the faces' area (the red cell's membrane is stiff in dilatation) and the
+// thickness; where the spacing does not allow that stretch, s_axis is what it allows and the
+// thickness grows to keep the volume.
+Placement stack_stretched(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh& vessel,
+                          const WallDistance& wall, const NarrowTube& tube, std::mt19937_64& rng) {
   const CellOverlap undeformed(reference, spec.check_order, spec.box, &wall, spec.gap);
   const Eigen::MatrixX3d& p = undeformed.mesh().points;  // reference frame, centroid at 0
-
-  // Along the axis: as close to 1 as lets the width fit, at most what the spacing leaves.
   const double longest =
-      std::min(kLongestStretch, (spacing - 3.0 * spec.gap) / (2.0 * p.col(0).cwiseAbs().maxCoeff()));
+      std::min(kLongestStretch, (tube.spacing - 3.0 * spec.gap) / (2.0 * p.col(0).cwiseAbs().maxCoeff()));
   auto widest = [&](double s_axis, double s_width) {
     const double s_thickness = 1.0 / (s_axis * s_width);
     return ((s_width * p.col(1)).array().square() + (s_thickness * p.col(2)).array().square()).sqrt().maxCoeff();
   };
-  double s_axis = std::min(1.0, longest), s_width = 0.0;
-  for (; s_axis <= longest + 1e-12; s_axis += kSqueezeStep) {
-    for (double w = 1.0; w >= kSmallestSqueeze && s_width == 0.0; w -= kSqueezeStep)
-      if (widest(s_axis, w) <= fit_radius) s_width = w;
-    if (s_width > 0.0) break;
+  double s_axis = 0.0, s_width = 0.0;
+  for (double w = 1.0; w >= kSmallestSqueeze && s_width == 0.0 && longest > 0; w -= kSqueezeStep) {
+    const double along = std::min(longest, 1.0 / w);
+    if (widest(along, w) <= tube.fit_radius) s_axis = along, s_width = w;
   }
-  if (!(longest > 0) || s_width == 0.0) {
-    throw std::runtime_error("cell placement: the tube (equivalent diameter " + percent(2.0 * lumen_radius) +
+  if (s_width == 0.0) {
+    throw std::runtime_error("cell placement: the tube (equivalent diameter " + percent(2.0 * tube.lumen_radius) +
                              ") is too narrow for " + std::to_string(spec.count) +
                              (spec.count == 1 ? " cell" : " cells") + " even squeezed to " +
                              percent(100.0 * kSmallestSqueeze) + "% of the width and stretched up to " +
-                             percent(kLongestStretch) + "x along it within the spacing " + percent(spacing) +
+                             percent(kLongestStretch) + "x along it within the spacing " + percent(tube.spacing) +
                              " (gap " + percent(spec.gap) + "): lower the count or hematocrit, or widen the tube");
   }
   const Eigen::Vector3d factors(s_axis, s_width, 1.0 / (s_axis * s_width));
   SHSurface stretched = reference;
   stretched.transform(factors.asDiagonal().toDenseMatrix(), undeformed.centroid());
   const CellOverlap overlap(stretched, spec.check_order, spec.box, &wall, spec.gap);
-  const Problem problem{spec, overlap, nullptr};
-
-  // The lumen's centre in the cross-section: the mean of the wall's nodes.
-  Eigen::Vector3d centre = vessel.surface.points.colwise().mean().transpose();
-  const Eigen::Vector3d t = Eigen::Vector3d::Unit(a), u = Eigen::Vector3d::Unit((a + 1) % 3),
-                        v = Eigen::Vector3d::Unit((a + 2) % 3);
-  centre[a] = spacing * uniform(rng);
+  const Eigen::Vector3d t = Eigen::Vector3d::Unit(tube.axis);
   Placement out;
-  std::vector<CellPose> poses;
-  for (int k = 0; k < spec.count; ++k) {
-    const double turn = 2.0 * std::numbers::pi * uniform(rng);
-    const Eigen::Vector3d across = std::cos(turn) * u + std::sin(turn) * v;  // the thickness direction
-    CellPose pose;
-    pose.rotation << t, across.cross(t), across;  // reference x, y, z to the axis, the width, the thickness
-    pose.position = centre + k * spacing * t;
-    pose.position[a] = std::fmod(pose.position[a], length);
-    if (!problem.fits(pose, poses)) {
-      throw std::runtime_error("cell placement: " + std::to_string(spec.count) +
-                               " cells pre-deformed for the narrow tube (stretch " + percent(factors[0]) + ", " +
-                               percent(factors[1]) + ", " + percent(factors[2]) + ") do not fit at spacing " +
-                               percent(spacing) + " (gap " + percent(spec.gap) + "): lower the count or hematocrit");
-    }
-    poses.push_back(pose);
-    out.cells.push_back({pose.position, pose.rotation,
-                         pose.rotation * factors.asDiagonal().toDenseMatrix() * pose.rotation.transpose()});
-  }
+  out.cells = stack_on_axis(overlap, spec, vessel, tube, rng,
+                            [&](const Eigen::Vector3d& across) {  // reference x, y, z: the axis, the width, the thickness
+                              Eigen::Matrix3d r;
+                              r << t, across.cross(t), across;
+                              return r;
+                            },
+                            "pre-deformed for the narrow tube (stretch " + percent(factors[0]) + ", " +
+                                percent(factors[1]) + ", " + percent(factors[2]) + ")");
+  for (PlacedCell& c : out.cells) c.stretch = c.rotation * factors.asDiagonal().toDenseMatrix() * c.rotation.transpose();
   out.stretch_factors = factors;
+  return out;
+}
+
+// Face-on: each cell folded into a parachute (geometry/parachute_fold.h) whose outer radius is
+// the fit radius, the nose along the flow; the rest shape is the disc turned the same way.
+Placement stack_parachutes(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh& vessel,
+                           const WallDistance& wall, const NarrowTube& tube, std::mt19937_64& rng) {
+  SHSurface disc = reference;  // centroid at the origin
+  disc.translate(-volume_centroid(reference.geometry(SHTransform::gauss(2 * reference.order()))));
+  // The projection onto the cell's order overshoots the fold's radius by about 1%: two
+  // corrections of the radius asked bring the result within the fit radius.
+  double radius = tube.fit_radius;
+  ParachuteFold fold = fold_into_parachute(disc, radius);
+  for (int it = 0; it < 2 && fold.radius > tube.fit_radius; ++it)
+    fold = fold_into_parachute(disc, radius *= tube.fit_radius / fold.radius);
+  const std::string what = "folded into parachutes (radius " + percent(fold.radius) + ", length " +
+                           percent(fold.length) + ")";
+  if (fold.length + 3.0 * spec.gap > tube.spacing) {
+    throw std::runtime_error("cell placement: " + std::to_string(spec.count) + " cells " + what +
+                             " are longer than the spacing " + percent(tube.spacing) + " less 3 gaps (" +
+                             percent(spec.gap) + "): lower the count or hematocrit, or widen the tube");
+  }
+  const CellOverlap overlap(fold.surface, spec.check_order, spec.box, &wall, spec.gap);
+  const Eigen::Vector3d t = Eigen::Vector3d::Unit(tube.axis);
+  const Eigen::Vector3d nose = spec.flow.dot(t) < 0 ? Eigen::Vector3d(-t) : t;
+  Placement out;
+  out.cells = stack_on_axis(overlap, spec, vessel, tube, rng,
+                            [&](const Eigen::Vector3d& across) {  // reference x, y, z: across, the rest, the nose
+                              Eigen::Matrix3d r;
+                              r << across, nose.cross(across), nose;
+                              return r;
+                            },
+                            what);
+  out.parachute = std::move(fold.surface);
+  out.parachute_radius = fold.radius;
+  out.parachute_length = fold.length;
   return out;
 }
 
@@ -228,7 +289,21 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
   const std::vector<CellPose> sequential = problem.add_sequentially(rng, 1.0);
   if (static_cast<int>(sequential.size()) == spec.count) return finish(sequential, 0);
   if (sequential.empty() && tube_axis >= 0) {
-    Placement out = stack_deformed(reference, spec, *vessel, *wall, tube_axis, space, rng);
+    const NarrowTube tube(spec, tube_axis, space);
+    Placement out;
+    if (spec.narrow_start == NarrowStart::parachute) {
+      try {
+        out = stack_parachutes(reference, spec, *vessel, *wall, tube, rng);
+      } catch (const std::runtime_error& folded) {  // too wide to fold, or too long: try edge-on
+        try {
+          out = stack_stretched(reference, spec, *vessel, *wall, tube, rng);
+        } catch (const std::runtime_error& stretched) {
+          throw std::runtime_error(std::string(stretched.what()) + "; face-on: " + folded.what());
+        }
+      }
+    } else {
+      out = stack_stretched(reference, spec, *vessel, *wall, tube, rng);
+    }
     out.hematocrit = hematocrit(spec.count, 1.0);
     return out;
   }
@@ -298,8 +373,16 @@ std::vector<SHSurface> placed_surfaces(const SHSurface& reference, const std::ve
   return surfaces(reference, cells, false);
 }
 
-std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells) {
-  return surfaces(reference, cells, true);
+std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const Placement& placement) {
+  if (!placement.parachute) return surfaces(reference, placement.cells, true);
+  std::vector<SHSurface> out;
+  for (const PlacedCell& c : placement.cells) {  // the parachute's centroid is at the origin
+    SHSurface s = *placement.parachute;
+    s.rotate(c.rotation);
+    s.translate(c.position);
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 }  // namespace rbcflow

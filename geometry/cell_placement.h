@@ -11,11 +11,13 @@
 // vertex at least `gap` inside the wall.
 //
 // Tubes narrower than the cell (not even one undeformed cell fits) get the cells stacked along
-// the axis at equal spacing, each deformed in advance by a volume-preserving stretch (see
-// PlacedCell): the membrane's rest shape stays the undeformed cell, so the stretch is an initial
-// deformation that the flow relaxes into the tube's parachutes and slippers.
+// the axis at equal spacing, each deformed in advance: stretched edge-on by a volume-preserving
+// stretch that keeps the faces' area (the default; see PlacedCell), or folded face-on into a
+// parachute that keeps the cell's area and volume. The membrane's rest shape stays the undeformed cell, so the fold or
+// stretch is an initial deformation that the flow relaxes into the tube's parachutes.
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "sh_surface.h"
@@ -38,6 +40,13 @@ enum class CellOrientation {
 // placed pre-deformed.
 inline constexpr double kNarrowTubeRatio = 1.3;
 
+// How cells start in tubes narrower than the cell (stack_stretched, stack_parachutes in
+// cell_placement.cpp).
+enum class NarrowStart {
+  stretched,  // edge-on, the plane of the disc along the axis, stretched along it and squeezed across
+  parachute,  // face-on, folded into a parachute of the lumen's radius (geometry/parachute_fold.h)
+};
+
 struct PlacementSpec {
   Eigen::Vector3d box = Eigen::Vector3d::Zero();  // periodic box sides
   int count = 0;
@@ -45,6 +54,9 @@ struct PlacementSpec {
   std::uint64_t seed = 1;
   CellOrientation orientation = CellOrientation::automatic;
   int check_order = 10;  // order of the triangulation used by the tests
+  NarrowStart narrow_start = NarrowStart::stretched;
+  // The mean flow: parachutes point their nose along it (along the tube axis where it is zero).
+  Eigen::Vector3d flow = Eigen::Vector3d::Zero();
 };
 
 struct PlacedCell {
@@ -63,6 +75,11 @@ struct Placement {
   // Cells placed pre-deformed (narrow tubes): the stretch factors of the cell along the tube
   // axis, across it in the cell's plane and through its thickness (product 1); else all 1.
   Eigen::Vector3d stretch_factors = Eigen::Vector3d::Ones();
+  // Cells folded into parachutes (narrow tubes, NarrowStart::parachute): the folded reference,
+  // centroid at the origin, nose along z; each cell's initial shape is it turned by the cell's
+  // rotation. Its outer radius and length are given.
+  std::optional<SHSurface> parachute;
+  double parachute_radius = 0, parachute_length = 0;
 };
 
 // Throws std::invalid_argument for a bad spec, std::runtime_error (saying how many cells fitted
@@ -70,8 +87,9 @@ struct Placement {
 Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, const VesselMesh* vessel);
 
 // The placed copies of `reference`: their rest shapes (the membranes' reference) and their
-// initial shapes (the rest shapes stretched by PlacedCell::stretch about their centroids).
+// initial shapes (the rest shapes stretched by PlacedCell::stretch about their centroids, or the
+// placement's parachute turned and moved as the rest shape).
 std::vector<SHSurface> placed_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells);
-std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const std::vector<PlacedCell>& cells);
+std::vector<SHSurface> initial_surfaces(const SHSurface& reference, const Placement& placement);
 
 }  // namespace rbcflow

@@ -21,6 +21,9 @@ enum class DomainKind { periodic, free };
 enum class FlowKind { none, shear, extensional };
 enum class VesselKind { tube, constriction, bifurcation, file };
 enum class CellShape { rbc, sphere, ellipsoid };
+// How cells start in a tube narrower than the cell: stretched edge-on, or folded face-on into
+// parachutes (geometry/cell_placement.h).
+enum class NarrowStartKind { stretched, parachute };
 enum class MembraneLawKind { skalak, neo_hookean, hookean };
 enum class TimeSchemeKind { euler, ab2 };
 enum class RenderView { side, end, iso };
@@ -90,6 +93,7 @@ struct CaseCells {
   int order = 16;   // N: degrees n < N; grid N x 2N
   int dealias = 3;  // M / N; membrane forces on the M x 2M grid
   int seed = 1;     // random placement and orientation
+  NarrowStartKind narrow_start = NarrowStartKind::stretched;
   std::vector<Vec3> positions;     // empty: placed at random
   std::vector<Vec3> orientations;  // symmetry axes; empty: random
   Vec3 body_force{};               // net external force on each cell
@@ -185,6 +189,7 @@ std::string to_string(DomainKind k);
 std::string to_string(FlowKind k);
 std::string to_string(VesselKind k);
 std::string to_string(CellShape s);
+std::string to_string(NarrowStartKind s);
 std::string to_string(MembraneLawKind l);
 std::string to_string(TimeSchemeKind s);
 std::string to_string(RenderView v);

@@ -413,6 +413,8 @@ std::optional<CaseCells> read_cells(Table& top, const CaseDomain& d, bool has_ve
   c.order = t->integer("order", c.order, 4, 128);
   c.dealias = t->integer("dealias", c.dealias, 1, 4);
   c.seed = t->integer("seed", c.seed, 0, std::numeric_limits<int>::max());
+  c.narrow_start = t->choice<NarrowStartKind>("narrow_start", c.narrow_start,
+                                          {{"stretched", NarrowStartKind::stretched}, {"parachute", NarrowStartKind::parachute}});
   c.count = t->optional_integer("count", 1, 1000000);
   c.hematocrit = t->optional_real("hematocrit", open_closed(0, 0.5));
   c.positions = t->vec3_list("positions", any_finite());

@@ -120,6 +120,7 @@ void write_cells(Writer& w, const CaseCells& c) {
   w.key("order", c.order);
   w.key("dealias", c.dealias);
   w.key("seed", c.seed);
+  w.text("narrow_start", to_string(c.narrow_start));
   if (!c.positions.empty()) w.key("positions", vec_list(c.positions));
   if (!c.orientations.empty()) w.key("orientations", vec_list(c.orientations));
   w.key("body_force", vec(c.body_force));
@@ -274,6 +275,7 @@ std::string to_string(VesselKind k) {
 std::string to_string(CellShape s) {
   return s == CellShape::rbc ? "rbc" : s == CellShape::sphere ? "sphere" : "ellipsoid";
 }
+std::string to_string(NarrowStartKind s) { return s == NarrowStartKind::parachute ? "parachute" : "stretched"; }
 std::string to_string(MembraneLawKind l) {
   return l == MembraneLawKind::skalak ? "skalak" : l == MembraneLawKind::neo_hookean ? "neo-hookean" : "hookean";
 }

@@ -169,15 +169,39 @@ TEST(CellPlacement, NarrowTubeAlignsCellsWithTheAxis) {
 }
 
 // An undeformed red cell (diameter 2.77) fits a D = 2 tube in no orientation: the cells are
-// stacked along the axis at equal spacing and pre-deformed. Exact identities: the stretch is
-// symmetric with determinant 1, so the initial shapes keep the cell's volume to rounding; the
-// rest shapes are the reference turned, so they keep its area; the centroids sit on the axis
-// at spacing L / n. Geometry: every initial shape at least the gap inside the wall and from
-// the others (checked on the triangulations, independently of the placement's own test).
-TEST(CellPlacement, NarrowTubeGetsStackedPreDeformedCells) {
+// stacked along the axis at equal spacing and pre-deformed. Common checks of both starts: the
+// rest shapes are the reference turned, so they keep its area; the initial shapes keep the
+// cell's volume and sit on the axis at spacing L / n; every initial shape is at least the gap
+// inside the wall and from the others (checked on the triangulations, independently of the
+// placement's own test).
+namespace {
+
+void expect_stacked_on_the_axis(const SHSurface& rbc, const Placement& p, const PlacementSpec& spec,
+                                const VesselMesh& wall, double volume_tolerance) {
+  const SHTransform t = SHTransform::gauss(24);
+  const double volume = enclosed_volume(rbc.geometry(t)), area = surface_area(rbc.geometry(t));
+  const std::vector<SHSurface> rest = placed_surfaces(rbc, p.cells), initial = initial_surfaces(rbc, p);
+  const double spacing = spec.box.z() / spec.count;
+  for (std::size_t i = 0; i < p.cells.size(); ++i) {
+    EXPECT_NEAR(enclosed_volume(initial[i].geometry(t)) / volume, 1.0, volume_tolerance);
+    EXPECT_NEAR(surface_area(rest[i].geometry(t)) / area, 1.0, 1e-12);
+    const Eigen::Vector3d c = volume_centroid(initial[i].geometry(t));
+    EXPECT_NEAR(c.x(), 0.5 * spec.box.x(), 0.02);  // on the axis (the mean of the wall's nodes)
+    EXPECT_NEAR(c.y(), 0.5 * spec.box.y(), 0.02);
+    const double dz = std::fmod(c.z() - volume_centroid(initial[0].geometry(t)).z() + spec.box.z(), spacing);
+    EXPECT_NEAR(std::min(dz, spacing - dz), 0.0, 1e-9);
+  }
+  EXPECT_GE(smallest_separation(initial, spec.box, spec.check_order), spec.gap);
+  EXPECT_GE(smallest_wall_distance(initial, WallDistance(wall), spec.check_order), spec.gap);
+}
+
+}  // namespace
+
+// Edge-on (the default): the stretch is symmetric with determinant 1 (the volume kept to rounding) and keeps
+// the faces' area (s_axis s_width = 1, the thickness unchanged) where the spacing allows.
+TEST(CellPlacement, NarrowTubeGetsStackedStretchedCells) {
   const Eigen::Vector3d box(2.5, 2.5, 9);
   const VesselMesh wall = tube(TubeSpec{2.0, 2, box, 0.2});
-  const WallDistance distance(wall);
   PlacementSpec spec;
   spec.box = box;
   spec.count = 2;  // H_T = 0.30, as data/cases/fahraeus/quick/tube_2_0.toml
@@ -185,28 +209,44 @@ TEST(CellPlacement, NarrowTubeGetsStackedPreDeformedCells) {
   const SHSurface rbc = make_biconcave(12);
   const Placement p = place_cells(rbc, spec, &wall);
   ASSERT_EQ(p.cells.size(), 2u);
+  EXPECT_FALSE(p.parachute);
   const Eigen::Vector3d& f = p.stretch_factors;
   std::printf("D = 2, 2 cells: stretch %.3f along, %.3f across, %.3f through the thickness\n", f[0], f[1], f[2]);
-  EXPECT_NEAR(f.prod(), 1.0, 1e-12);
   EXPECT_LT(f[1], 1.0);  // squeezed across the tube
-  const SHTransform t = SHTransform::gauss(24);
-  const double volume = enclosed_volume(rbc.geometry(t)), area = surface_area(rbc.geometry(t));
-  const std::vector<SHSurface> rest = placed_surfaces(rbc, p.cells), initial = initial_surfaces(rbc, p.cells);
-  for (std::size_t i = 0; i < p.cells.size(); ++i) {
-    const Eigen::Matrix3d& S = p.cells[i].stretch;
+  EXPECT_NEAR(f[0] * f[1], 1.0, 1e-12);
+  EXPECT_NEAR(f[2], 1.0, 1e-12);
+  for (const PlacedCell& c : p.cells) {
+    const Eigen::Matrix3d& S = c.stretch;
     EXPECT_LT((S - S.transpose()).norm(), 1e-14);
     EXPECT_NEAR(S.determinant(), 1.0, 1e-12);
-    EXPECT_NEAR(enclosed_volume(initial[i].geometry(t)) / volume, 1.0, 1e-12);
-    EXPECT_NEAR(surface_area(rest[i].geometry(t)) / area, 1.0, 1e-12);
-    EXPECT_GT(std::abs(surface_area(initial[i].geometry(t)) / area - 1.0), 1e-3);  // really deformed
-    const Eigen::Vector3d c = volume_centroid(initial[i].geometry(t));
-    EXPECT_NEAR(c.x(), 1.25, 0.02);  // on the axis (the mean of the wall's nodes)
-    EXPECT_NEAR(c.y(), 1.25, 0.02);
-    const double dz = std::fmod(c.z() - volume_centroid(initial[0].geometry(t)).z() + 9.0, 4.5);
-    EXPECT_NEAR(std::min(dz, 4.5 - dz), 0.0, 1e-9);
+    EXPECT_NEAR((S * c.rotation.col(0)).dot(c.rotation.col(0)), f[0], 1e-12);  // the disc's plane along the axis
+    EXPECT_NEAR(std::abs(c.rotation.col(0).z()), 1.0, 1e-12);
   }
-  EXPECT_GE(smallest_separation(initial, box, spec.check_order), kGap);
-  EXPECT_GE(smallest_wall_distance(initial, distance, spec.check_order), kGap);
+  expect_stacked_on_the_axis(rbc, p, spec, wall, 1e-12);
+}
+
+// Face-on: the cells are the placement's parachute, its nose along the flow (here
+// -z), its volume that of the cell (exact: geometry/parachute_fold.h), its outer radius within
+// the lumen less the margin and gap.
+TEST(CellPlacement, NarrowTubeGetsStackedParachutes) {
+  const Eigen::Vector3d box(2.5, 2.5, 9);
+  const VesselMesh wall = tube(TubeSpec{2.0, 2, box, 0.2});
+  PlacementSpec spec;
+  spec.box = box;
+  spec.count = 2;
+  spec.gap = kGap;
+  spec.flow = Eigen::Vector3d(0, 0, -5);
+  spec.narrow_start = NarrowStart::parachute;
+  const SHSurface rbc = make_biconcave(12);
+  const Placement p = place_cells(rbc, spec, &wall);
+  ASSERT_EQ(p.cells.size(), 2u);
+  ASSERT_TRUE(p.parachute);
+  std::printf("D = 2, 2 cells: parachutes of radius %.3f, length %.3f\n", p.parachute_radius, p.parachute_length);
+  EXPECT_EQ(p.stretch_factors, Eigen::Vector3d::Ones());
+  EXPECT_LT(p.parachute_radius, 1.0 - kGap);
+  EXPECT_GT(p.parachute_radius, 0.8);  // fills the lumen: (1 - 0.05) x 1 - gap less the overshoot
+  for (const PlacedCell& c : p.cells) EXPECT_NEAR(c.rotation.col(2).z(), -1.0, 1e-12);  // the nose along -z
+  expect_stacked_on_the_axis(rbc, p, spec, wall, 1e-12);
 }
 
 // A tube narrower than even a pre-deformed cell is an error that says so.

@@ -138,6 +138,7 @@ TEST(Case, DefaultsAreFilledIn) {
   ASSERT_TRUE(cells.cells);
   EXPECT_EQ(cells.cells->count, 1);
   EXPECT_EQ(cells.cells->shape, CellShape::rbc);
+  EXPECT_EQ(cells.cells->narrow_start, NarrowStartKind::stretched);
   EXPECT_EQ(cells.cells->membrane.shear_modulus, 12.4);
   EXPECT_EQ(cells.cells->membrane.bending_modulus, 0.0669);
 }
@@ -198,7 +199,7 @@ TEST(Case, WrittenCaseReadsBackEqual) {
       "positions = [[0.1, 0.2, 0.3], [3, 0, 0]]\norientations = [[1, 1, 0], [0, 0, 1]]\n"
       "[cells.membrane]\nlaw = \"neo-hookean\"\n[time]\ndt = 0.001\n",
       minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.5]\n"
-              "[cells]\nhematocrit = 0.3\n[output]\nformats = []\nrender_view = \"end\"\n"),
+              "[cells]\nhematocrit = 0.3\nnarrow_start = \"parachute\"\n[output]\nformats = []\nrender_view = \"end\"\n"),
       minimal("[vessel]\nkind = \"file\"\npath = \"wall.msh\"\nscale = 0.354\n[ewald]\ngrid = [8, 8, 8]\n"),
       "[domain]\nbox = [5, 5, 10]\ntube_velocity = 2.5\n[vessel]\nkind = \"constriction\"\ndiameter = 3.5\n"
       "depth = 2.2\nwidth = 1.2\ncenter = 5\n",
@@ -279,6 +280,8 @@ TEST(Case, WrongTypesAreErrors) {
   EXPECT_EQ(error_of("cells = 3\n" + minimal()), "bad.toml:1: cells: expected a table, got an integer");
   EXPECT_EQ(error_of(minimal("[cells]\nshape = \"cube\"\n")),
             "bad.toml:5: cells.shape: \"cube\" is not allowed (allowed: \"rbc\", \"sphere\", \"ellipsoid\")");
+  EXPECT_EQ(error_of(minimal("[cells]\nnarrow_start = \"sideways\"\n")),
+            "bad.toml:5: cells.narrow_start: \"sideways\" is not allowed (allowed: \"stretched\", \"parachute\")");
   EXPECT_TRUE(contains(error_of(minimal("[output]\nformats = [\"xdmf\", \"png\"]\n")), "output.formats"));
   EXPECT_TRUE(contains(error_of(minimal("[output]\nformats = [\"vtk\", \"vtk\"]\n")), "listed twice"));
 }
