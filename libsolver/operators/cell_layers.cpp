@@ -60,8 +60,12 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   ScopedTimer near_timer(timings_.near);
 #pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
-    // Nodes of other cells closer than the near distance (nearest periodic image).
+    // Nodes of other cells closer than the near distance (nearest periodic image), and the
+    // cell's own nodes near another part of its surface.
     NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
+    NearTargets self = find_self_near_targets(*cells_[c], c * np);
+    near.targets.insert(near.targets.end(), self.targets.begin(), self.targets.end());
+    near.rows.insert(near.rows.end(), self.rows.begin(), self.rows.end());
     near_[c].rows = std::move(near.rows);
     const std::vector<QuadratureTarget>& near_targets = near.targets;
     if (near_targets.empty()) continue;

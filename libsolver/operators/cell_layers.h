@@ -5,7 +5,8 @@
 //   double_layer(u)_t = p.v. integral_D T(x - x_t) u n dS  (periodic: with the linear part of (3))
 // Free space: direct regular sums; periodic: SPME + real-space sums (EwaldPlan). In both, the
 // singular self-interaction of each cell and the nearly-singular interaction of close cells
-// come from the quadrature corrections (libsolver/quadrature), built once in the constructor.
+// (and of parts of one cell close to each other, near_targets.h) come from the quadrature
+// corrections (libsolver/quadrature), built once in the constructor.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
 #include <Eigen/Core>
 #include <memory>

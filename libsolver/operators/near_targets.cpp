@@ -1,6 +1,9 @@
 #include "near_targets.h"
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "geometry/aabb_tree.h"
 #include "geometry/sh_surface.h"
@@ -44,6 +47,45 @@ NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::M
     t.distance = proj.distance;
     out.targets.push_back(t);
     out.rows.push_back(r);
+  }
+  return out;
+}
+
+NearTargets find_self_near_targets(const CellQuadratureGeometry& cell, int row_offset) {
+  NearTargets out;
+  const SourceNodes& nodes = cell.nodes();
+  const SphGrid& grid = cell.grids().n_grid->grid();
+  const double separation = std::min(std::numbers::pi, kSelfNearAngle * cell.patch_radius());
+  if (separation >= std::numbers::pi) return out;  // patches too wide to keep apart (N < 9 at factor 2)
+  const double cos_separation = std::cos(separation), near = cell.near_distance();
+  auto direction = [](double theta, double phi) {
+    return Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  };
+  const int n = grid.size();
+  Eigen::MatrixXd u(n, 3);
+  for (int p = 0; p < n; ++p) u.row(p) = direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
+  for (int t = 0; t < n; ++t) {
+    // The nearest node beyond the separation seeds the projection onto that part.
+    int seed = -1;
+    double closest = near + cell.mesh_size();  // the nodes lie within h of the surface's foot points
+    for (int q = 0; q < n; ++q) {
+      if (u.row(t).dot(u.row(q)) >= cos_separation) continue;
+      const double d = (nodes.x.row(t) - nodes.x.row(q)).norm();
+      if (d < closest) closest = d, seed = q;
+    }
+    if (seed < 0) continue;
+    const Eigen::Vector3d x0 = nodes.x.row(t).transpose();
+    const SurfaceProjection proj =
+        project_onto_surface(cell.coeffs(), x0, grid.theta()[seed / grid.n_phi()], grid.phi(seed % grid.n_phi()));
+    if (!proj.converged || proj.distance >= near) continue;
+    if (u.row(t).dot(direction(proj.theta, proj.phi)) >= cos_separation) continue;  // slid back towards the node
+    QuadratureTarget target;
+    target.x = x0;
+    target.theta = proj.theta;
+    target.phi = proj.phi;
+    target.distance = proj.distance;
+    out.targets.push_back(target);
+    out.rows.push_back(row_offset + t);
   }
   return out;
 }

@@ -23,4 +23,14 @@ struct NearTargets {
 NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::MatrixXd& points,
                               const std::optional<PeriodicBox>& box, int skip_begin = 0, int skip_end = 0);
 
+// A cell's own nodes that lie within the near distance of another part of the same surface:
+// the two faces at a red cell's dimple (0.3 apart, against a near distance of 0.5 at N = 16), a
+// folded rim. The node's singular patch covers its own neighbourhood only; the other part,
+// more than kSelfNearAngle patch radii away on the parameter sphere, gets a nearly-singular
+// patch centred at the node's projection onto it. At that separation neither patch's window
+// reaches where the other's integrand is (nearly) singular, so the two corrections add.
+// Rows are row_offset + node.
+inline constexpr double kSelfNearAngle = 1.5;
+NearTargets find_self_near_targets(const CellQuadratureGeometry& cell, int row_offset = 0);
+
 }  // namespace rbcflow
