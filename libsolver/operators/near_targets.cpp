@@ -10,6 +10,20 @@
 #include "geometry/surface_projection.h"
 
 namespace rbcflow {
+namespace {
+
+// The target x0 with its patch centred at the projection's foot point.
+void add_target(NearTargets& out, const Eigen::Vector3d& x0, const SurfaceProjection& proj, int row) {
+  QuadratureTarget t;
+  t.x = x0;
+  t.theta = proj.theta;
+  t.phi = proj.phi;
+  t.distance = proj.distance;
+  out.targets.push_back(t);
+  out.rows.push_back(row);
+}
+
+}  // namespace
 
 NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::MatrixXd& points,
                               const std::optional<PeriodicBox>& box, int skip_begin, int skip_end) {
@@ -40,13 +54,7 @@ NearTargets find_near_targets(const CellQuadratureGeometry& cell, const Eigen::M
     const Eigen::Vector2d seed = triangulation_seed(mesh, grid, closest.triangle, x0);
     const SurfaceProjection proj = project_onto_surface(cell.coeffs(), x0, seed[0], seed[1]);
     if (proj.distance >= near) continue;
-    QuadratureTarget t;
-    t.x = x0;
-    t.theta = proj.theta;
-    t.phi = proj.phi;
-    t.distance = proj.distance;
-    out.targets.push_back(t);
-    out.rows.push_back(r);
+    add_target(out, x0, proj, r);
   }
   return out;
 }
@@ -79,13 +87,7 @@ NearTargets find_self_near_targets(const CellQuadratureGeometry& cell, int row_o
         project_onto_surface(cell.coeffs(), x0, grid.theta()[seed / grid.n_phi()], grid.phi(seed % grid.n_phi()));
     if (!proj.converged || proj.distance >= near) continue;
     if (u.row(t).dot(direction(proj.theta, proj.phi)) >= cos_separation) continue;  // slid back towards the node
-    QuadratureTarget target;
-    target.x = x0;
-    target.theta = proj.theta;
-    target.phi = proj.phi;
-    target.distance = proj.distance;
-    out.targets.push_back(target);
-    out.rows.push_back(row_offset + t);
+    add_target(out, x0, proj, row_offset + t);
   }
   return out;
 }
