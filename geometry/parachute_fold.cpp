@@ -89,9 +89,12 @@ ParachuteFold fold_into_parachute(const SHSurface& cell, double radius) {
   };
   const double shortest = bisect([&](double L) { return Meridian(R, L, w).volume(); }, kNose * R + w, 100.0, volume);
   if (!(Meridian(R, shortest, w).area() < area)) {
+    // The least area that holds the volume within radius R falls with R up to about the
+    // radius of the cylinder as long as it is wide, cbrt(V / pi), and rises beyond.
+    const bool narrow = R < std::cbrt(volume / pi);
     throw std::runtime_error("fold_into_parachute: a parachute of radius " + number(R) +
                              " holding the cell's volume has more than its area " + number(area) +
-                             ": the radius is too large for a folded cell");
+                             (narrow ? ": the radius is too small for the cell" : ": the radius is too large for a folded cell"));
   }
   const double length = bisect([&](double L) { return Meridian(R, L, dimple_for(L)).area(); }, shortest,
                                100.0, area);

@@ -29,7 +29,7 @@ struct ParachuteFold {
 
 // `cell`: a disc symmetric about z and about z = 0, centroid at the origin; `radius` (> 0) the
 // parachute's outer radius. Throws std::runtime_error where no parachute of that radius has the
-// cell's area and volume (the radius too large for the cell: it would not need folding).
+// cell's area and volume: the radius too large (the cell would not need folding) or too small.
 ParachuteFold fold_into_parachute(const SHSurface& cell, double radius);
 
 }  // namespace rbcflow

@@ -265,6 +265,25 @@ TEST(CellPlacement, TubeTooNarrowEvenForPreDeformedCellsIsAnError) {
   }
 }
 
+// Parachutes asked for where even the fold does not fit (D = 1: the parachute would be longer
+// than the spacing) and the edge-on stretch does not either: one error names both attempts.
+TEST(CellPlacement, TubeTooNarrowForParachutesNamesBothStarts) {
+  const VesselMesh wall = tube(TubeSpec{1.0, 2, Eigen::Vector3d(1.5, 1.5, 4), 0.15});
+  PlacementSpec spec;
+  spec.box = Eigen::Vector3d(1.5, 1.5, 4);
+  spec.count = 1;
+  spec.gap = 0.02;
+  spec.narrow_start = NarrowStart::parachute;
+  try {
+    place_cells(make_biconcave(8), spec, &wall);
+    FAIL() << "a red cell should not fit a D = 1 tube of length 4";
+  } catch (const std::runtime_error& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("too narrow"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("face-on: "), std::string::npos);
+  }
+}
+
 TEST(CellPlacement, ImpossibleRequestSaysHowManyFitted) {
   const VesselMesh wall = tube_3_5();
   PlacementSpec spec;

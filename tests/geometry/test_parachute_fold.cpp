@@ -73,14 +73,17 @@ TEST(ParachuteFold, NoseForwardDimpleBehindRimAtTheRear) {
   EXPECT_LT(m.x(widest, 2), 0.5 * (top + bottom));
 }
 
-// A radius so large that a parachute holding the cell's volume has more than its area: the
-// cell would not need folding, and the error says so.
-TEST(ParachuteFold, TooWideARadiusIsAnError) {
-  try {
-    fold_into_parachute(make_biconcave(12), 1.6);
-    FAIL() << "a parachute of radius 1.6 cannot have the red cell's area and volume";
-  } catch (const std::runtime_error& e) {
-    std::printf("%s\n", e.what());
-    EXPECT_NE(std::string(e.what()).find("too large"), std::string::npos);
+// A radius so large that a parachute holding the cell's volume has more than its area (the
+// cell would not need folding), or so small that it has too (a long thin tube): errors that say
+// which.
+TEST(ParachuteFold, TooWideOrTooNarrowARadiusIsAnError) {
+  for (const auto& [R, says] : {std::pair{1.6, "too large"}, std::pair{0.45, "too small"}}) {
+    try {
+      fold_into_parachute(make_biconcave(12), R);
+      FAIL() << "no parachute of radius " << R << " has the red cell's area and volume";
+    } catch (const std::runtime_error& e) {
+      std::printf("%s\n", e.what());
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos);
+    }
   }
 }
