@@ -50,15 +50,8 @@ HermiteStencil HermiteInterpolator::stencil(double theta, double phi) const {
   hermite_basis(t, dphi_, vt, dt);
   HermiteStencil st;
   st.cell = i * n_phi() + j;
-  for (int a = 0; a < 2; ++a) {
-    for (int b = 0; b < 2; ++b) {
-      double* w = &st.weights[4 * (2 * a + b)];
-      w[0] = vs[a] * vt[b];
-      w[1] = ds[a] * vt[b];
-      w[2] = vs[a] * dt[b];
-      w[3] = ds[a] * dt[b];
-    }
-  }
+  st.theta_w = {vs[0], ds[0], vs[1], ds[1]};
+  st.phi_w = {vt[0], dt[0], vt[1], dt[1]};
   return st;
 }
 

@@ -17,10 +17,13 @@ namespace rbcflow {
 // are contiguous.
 using HermiteData = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Where a point (theta, phi) falls on the uniform grid, with its 16 Hermite weights.
+// Where a point (theta, phi) falls on the uniform grid, with its Hermite weights in product
+// form: the weight of corner (a, b) in {0,1}^2 and data type (d_theta, d_phi) is
+// theta_w[2 a + d_theta] * phi_w[2 b + d_phi] (value and slope basis at each end).
 struct HermiteStencil {
-  int cell = 0;                       // i * n_phi + j of the cell's (theta_i, phi_j) corner
-  std::array<double, 16> weights{};   // corner (a, b) in {0,1}^2, data type d: 4 (2a + b) + d
+  int cell = 0;                    // i * n_phi + j of the cell's (theta_i, phi_j) corner
+  std::array<double, 4> theta_w{};
+  std::array<double, 4> phi_w{};
 };
 
 class HermiteInterpolator {
@@ -37,17 +40,19 @@ class HermiteInterpolator {
 
   HermiteStencil stencil(double theta, double phi) const;
 
-  // Interpolated components at a stencil (k = data.cols() / 4 values).
+  // Interpolated components at a stencil (k = data.cols() / 4 values). phi_shift moves the
+  // stencil by whole grid cells in phi (>= 0): the point (theta, phi + phi_shift * 2 pi / n_phi).
   template <typename Out>
-  void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out) const {
-    const int k = static_cast<int>(data.cols() / 4);
-    const int i = s.cell / n_phi(), j = s.cell % n_phi();
-    const int nodes[4] = {i * n_phi() + j, i * n_phi() + (j + 1) % n_phi(), (i + 1) * n_phi() + j,
-                          (i + 1) * n_phi() + (j + 1) % n_phi()};
+  void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift = 0) const {
+    const int k = static_cast<int>(data.cols() / 4), np = n_phi();
+    const int i = s.cell / np, j = (s.cell % np + phi_shift) % np, j1 = (j + 1) % np;
+    const int nodes[4] = {i * np + j, i * np + j1, (i + 1) * np + j, (i + 1) * np + j1};
     for (int c = 0; c < k; ++c) out[c] = 0.0;
     for (int corner = 0; corner < 4; ++corner) {
       const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();
-      const double* w = &s.weights[4 * corner];
+      const double* wt = &s.theta_w[2 * (corner / 2)];
+      const double* wp = &s.phi_w[2 * (corner % 2)];
+      const double w[4] = {wt[0] * wp[0], wt[1] * wp[0], wt[0] * wp[1], wt[1] * wp[1]};
       for (int c = 0; c < k; ++c)
         out[c] += w[0] * row[4 * c] + w[1] * row[4 * c + 1] + w[2] * row[4 * c + 2] + w[3] * row[4 * c + 3];
     }

@@ -22,10 +22,11 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int
   if (rho1 <= 0 || rho1 > std::numbers::pi || n_rho < 1 || n_varphi < 1 || delta < 0) {
     throw std::invalid_argument("polar_patch: bad radius, point counts or distance");
   }
-  // Orthonormal frame (e1, e2, u0) at the centre.
+  // Orthonormal frame (e1, e2, u0) at the centre, e1 = e_phi: defined at the poles too, and a
+  // rotation about the axis carries the patch of (theta0, phi0) onto that of (theta0, phi0 + a)
+  // point by point (the corrections of a ring of grid nodes share one patch, shifted in phi).
   const Eigen::Vector3d u0(std::sin(theta0) * std::cos(phi0), std::sin(theta0) * std::sin(phi0), std::cos(theta0));
-  const Eigen::Vector3d helper = std::abs(u0.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
-  const Eigen::Vector3d e1 = helper.cross(u0).normalized(), e2 = u0.cross(e1);
+  const Eigen::Vector3d e1(-std::sin(phi0), std::cos(phi0), 0.0), e2 = u0.cross(e1);
 
   const GaussLegendreRule g = gauss_legendre(n_rho);
   std::vector<double> rho(n_rho), w_rho(n_rho);

@@ -62,10 +62,8 @@ CellQuadratureGeometry::CellQuadratureGeometry(const SHCoeffs& x, std::shared_pt
   }
   jn_ = fine.analyze(jn);
   interp_ = std::make_shared<const HermiteInterpolator>(r * N, 1);
-  if (!options_.spectral_interpolation) {
-    x_data_ = interp_->node_data(x_);
-    jn_data_ = interp_->node_data(jn_);
-  }
+  x_data_ = interp_->node_data(x_);
+  jn_data_ = interp_->node_data(jn_);
   rho1_ = std::min(std::numbers::pi, options_.patch_radius_factor * std::numbers::pi / std::sqrt(double(N)));
   h_ = std::sqrt(surface_area(g)) / N;
   near_ = options_.near_factor * std::sqrt(h_);
@@ -83,15 +81,10 @@ std::vector<QuadratureTarget> CellQuadratureGeometry::node_targets() const {
   return t;
 }
 
-void CellQuadratureGeometry::geometry_at(double theta, double phi, Eigen::Vector3d& x, Eigen::Vector3d& jn) const {
-  if (options_.spectral_interpolation) {
-    x = sh_evaluate(x_, theta, phi).transpose();
-    jn = sh_evaluate(jn_, theta, phi).transpose();
-    return;
-  }
-  const HermiteStencil s = interp_->stencil(theta, phi);
-  interp_->interpolate(x_data_, s, x);
-  interp_->interpolate(jn_data_, s, jn);
+void CellQuadratureGeometry::geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn,
+                                         int phi_shift) const {
+  interp_->interpolate(x_data_, s, x, phi_shift);
+  interp_->interpolate(jn_data_, s, jn, phi_shift);
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
@@ -119,6 +112,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   const LayerCorrection& first = *corrections[0];
   const CellQuadratureGeometry& cell = *first.cell_;
   const QuadratureOptions& o = cell.options();
+  const HermiteInterpolator& interp = cell.interpolator();
   const int N = cell.grids().order;
   const int n_rho = o.radial_points > 0 ? o.radial_points : default_radial_points(N);
   const int n_varphi = o.angular_points > 0 ? o.angular_points : 2 * n_rho;
@@ -126,38 +120,89 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   const SphGrid& grid = cell.grids().n_grid->grid();
   const SourceNodes& nodes = cell.nodes();
   const std::vector<QuadratureTarget>& targets = first.targets_;
+  const int n_targets = static_cast<int>(targets.size());
+
+  // Tables of patch stencils: one per ring of node targets (the patch of the ring's node at
+  // phi = 0, shifted by whole Hermite cells for the others), one per other target.
+  auto stencils = std::make_shared<PatchStencils>();
+  stencils->table.resize(n_targets);
+  stencils->phi_shift.assign(n_targets, 0);
+  const bool rings = interp.n_phi() % grid.n_phi() == 0;
+  const int cells_per_node = interp.n_phi() / grid.n_phi();
+  std::vector<int> ring_table(grid.n_theta(), -1);
+  struct TableCentre {
+    double theta, phi;
+    int target;  // the target whose geometry sets the parametric distance, or -1 (on the surface)
+  };
+  std::vector<TableCentre> centres;
+  for (int t = 0; t < n_targets; ++t) {
+    const QuadratureTarget& target = targets[t];
+    const int i = target.self_node / grid.n_phi(), j = target.self_node % grid.n_phi();
+    const bool at_node = rings && target.self_node >= 0 && target.distance == 0.0 &&
+                         target.theta == grid.theta()[i] && target.phi == grid.phi(j);
+    if (!at_node) {
+      stencils->table[t] = static_cast<int>(centres.size());
+      centres.push_back({target.theta, target.phi, t});
+      continue;
+    }
+    if (ring_table[i] < 0) {
+      ring_table[i] = static_cast<int>(centres.size());
+      centres.push_back({grid.theta()[i], grid.phi(0), -1});
+    }
+    stencils->table[t] = ring_table[i];
+    stencils->phi_shift[t] = j * cells_per_node;
+  }
+  const int n_tables = static_cast<int>(centres.size());
+  stencils->tables.resize(n_tables);
+  std::vector<std::vector<double>> weights(n_tables);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int b = 0; b < n_tables; ++b) {
+    const TableCentre& centre = centres[b];
+    double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
+    if (centre.target >= 0 && targets[centre.target].distance > 0) {
+      Eigen::Vector3d xc, jc;
+      cell.geometry_at(interp.stencil(centre.theta, centre.phi), xc, jc);
+      delta = targets[centre.target].distance / std::sqrt(jc.norm());
+    }
+    for (const PatchPoint& q : polar_patch(centre.theta, centre.phi, rho1, n_rho, n_varphi, delta)) {
+      if (q.weight == 0.0) continue;
+      stencils->tables[b].push_back(interp.stencil(q.theta, q.phi));
+      weights[b].push_back(q.weight);
+    }
+  }
+  for (LayerCorrection* c : corrections) {
+    c->stencils_ = stencils;
+    c->patch_k_.resize(n_targets);
+    c->nodes_.resize(n_targets);
+  }
+
   // Directions of the grid nodes on the parameter sphere: a node is in a target's patch when
   // u_node . u_target > cos(rho_1), which needs no trigonometry per (target, node) pair.
   Eigen::MatrixXd u(grid.size(), 3);
   for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
-  for (LayerCorrection* c : corrections) {
-    c->patch_.resize(targets.size());
-    c->nodes_.resize(targets.size());
-  }
 
 #pragma omp parallel for schedule(dynamic, 4)
-  for (int t = 0; t < static_cast<int>(targets.size()); ++t) {
+  for (int t = 0; t < n_targets; ++t) {
     const QuadratureTarget& target = targets[t];
+    const std::vector<HermiteStencil>& table = stencils->tables[stencils->table[t]];
+    const std::vector<double>& weight = weights[stencils->table[t]];
+    const int shift = stencils->phi_shift[t];
     // The patch centre as the interpolant sees it: r = x_q - x0 is measured from it so that
     // the kernel's singularity sits exactly at rho = 0 (an offset of the interpolation error
     // would spoil r . n ~ rho^2 in the double layer). Off-surface targets keep their offset.
     Eigen::Vector3d xc, jc;
-    cell.geometry_at(target.theta, target.phi, xc, jc);
+    cell.geometry_at(interp.stencil(target.theta, target.phi), xc, jc);
     const Eigen::Vector3d x0 = target.self_node >= 0 ? xc : Eigen::Vector3d(target.x);
-    // Parametric distance of an off-surface target: distance over the local length scale.
-    const double delta = target.distance > 0 ? target.distance / std::sqrt(jc.norm()) : 0.0;
-    const std::vector<PatchPoint> pts = polar_patch(target.theta, target.phi, rho1, n_rho, n_varphi, delta);
-    for (LayerCorrection* c : corrections) c->patch_[t].reserve(pts.size());
-    for (const PatchPoint& q : pts) {
-      if (q.weight == 0.0) continue;
+    for (LayerCorrection* c : corrections) c->patch_k_[t].reserve(table.size());
+    for (std::size_t q = 0; q < table.size(); ++q) {
       Eigen::Vector3d xq, jn;
-      cell.geometry_at(q.theta, q.phi, xq, jn);
+      cell.geometry_at(table[q], xq, jn, shift);
       const Eigen::Vector3d r = xq - x0;
       for (LayerCorrection* c : corrections) {
         const bool single = c->kernel_.layer == Layer::single;
-        const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * q.weight))
-                                         : Eigen::Matrix3d(c->kernel_.matrix(r, jn * q.weight));
-        c->patch_[t].push_back({q.theta, q.phi, pack(k)});
+        const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * weight[q]))
+                                         : Eigen::Matrix3d(c->kernel_.matrix(r, jn * weight[q]));
+        c->patch_k_[t].push_back(pack(k));
       }
     }
     // The regular rule's share of the patch, eta K w at the nodes inside it, is removed.
@@ -196,21 +241,19 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHC
     throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3) with an expansion of order <= " +
                                 std::to_string(cell_->interpolator().order()));
   }
-  const bool spectral = cell_->options().spectral_interpolation;
   const HermiteInterpolator& interp = cell_->interpolator();
-  const HermiteData data = spectral ? HermiteData() : interp.node_data(c);
+  const HermiteData data = interp.node_data(c);
   Eigen::MatrixXd out(num_targets(), 3);
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
+    const std::vector<HermiteStencil>& table = stencils_->tables[stencils_->table[t]];
+    const std::vector<PackedKernel>& k = patch_k_[t];
+    const int shift = stencils_->phi_shift[t];
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const PatchEntry& e : patch_[t]) {
+    for (std::size_t q = 0; q < table.size(); ++q) {
       Eigen::Vector3d psi;
-      if (spectral) {
-        psi = sh_evaluate(c, e.theta, e.phi).transpose();
-      } else {
-        interp.interpolate(data, interp.stencil(e.theta, e.phi), psi);
-      }
-      sum += times(e.k, psi);
+      interp.interpolate(data, table[q], psi, shift);
+      sum += times(k[q], psi);
     }
     for (const NodeEntry& e : nodes_[t]) sum += times(e.k, Eigen::Vector3d(density.row(e.node)));
     out.row(t) = sum;

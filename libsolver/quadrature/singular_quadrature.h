@@ -32,7 +32,6 @@ struct QuadratureOptions {
   int radial_points = 0;             // points in rho; 0: default (see default_radial_points)
   int angular_points = 0;            // points in the patch angle; 0: 2 x radial
   int spline_refinement = 2;         // Hermite grid (r N + 1) x 2 r N
-  bool spectral_interpolation = false;  // evaluate the expansions exactly at patch points
   double near_factor = 1.0;          // nearly singular when d < near_factor sqrt(h)
 };
 int default_radial_points(int order);
@@ -62,8 +61,9 @@ class CellQuadratureGeometry {
   // On-surface targets: every node of the cell.
   std::vector<QuadratureTarget> node_targets() const;
 
-  // x and J n at a point of the parameter sphere (Hermite or spectral, per the options).
-  void geometry_at(double theta, double phi, Eigen::Vector3d& x, Eigen::Vector3d& jn) const;
+  // x and J n at a point of the parameter sphere (Hermite interpolation; phi_shift as in
+  // HermiteInterpolator::interpolate).
+  void geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn, int phi_shift = 0) const;
   const HermiteInterpolator& interpolator() const { return *interp_; }
 
  private:
@@ -99,22 +99,28 @@ class LayerCorrection {
   struct Unbuilt {};
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
                   std::vector<QuadratureTarget> targets, Unbuilt);
-  // Fills patch_ and nodes_ of corrections that share their cell and targets.
+  // Fills stencils_, patch_k_ and nodes_ of corrections that share their cell and targets.
   static void build(std::span<LayerCorrection* const> corrections);
 
-  struct PatchEntry {
-    double theta, phi;
-    std::array<double, 6> k;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
+  // Where the patch points of each target sit on the Hermite grid, shared by the single- and
+  // double-layer corrections of the same targets. The node targets of one ring of the grid
+  // share one table (their patches differ by a rotation about the axis: a shift in phi by
+  // whole Hermite cells); any other target has a table of its own.
+  struct PatchStencils {
+    std::vector<std::vector<HermiteStencil>> tables;
+    std::vector<int> table, phi_shift;  // per target
   };
+  using PackedKernel = std::array<double, 6>;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
   struct NodeEntry {
     int node;
-    std::array<double, 6> k;
+    PackedKernel k;
   };
   std::shared_ptr<const CellQuadratureGeometry> cell_;
   LayerKernel kernel_;
   std::vector<QuadratureTarget> targets_;
-  std::vector<std::vector<PatchEntry>> patch_;
-  std::vector<std::vector<NodeEntry>> nodes_;  // nodes in the patch: -eta K w
+  std::shared_ptr<const PatchStencils> stencils_;
+  std::vector<std::vector<PackedKernel>> patch_k_;  // per target, in the order of its table
+  std::vector<std::vector<NodeEntry>> nodes_;       // nodes in the patch: -eta K w
 };
 
 // Free-space layer potential of one cell at its own nodes: regular rule + corrections.

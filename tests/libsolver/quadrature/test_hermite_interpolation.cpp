@@ -46,3 +46,21 @@ TEST(HermiteInterpolation, ReproducesNodeValues) {
   interp.interpolate(data, interp.stencil(5 * dtheta, 0.0), v);
   EXPECT_NEAR(v[0], sh_evaluate(c, 5 * dtheta, 0.0)[0], 1e-14);
 }
+
+TEST(HermiteInterpolation, PhiShiftMovesTheStencilByWholeCells) {
+  // The corrections of a ring of grid nodes share one stencil table, shifted in phi: the
+  // shifted stencil must interpolate at phi + shift * dphi, across the seam phi = 2 pi too.
+  SHCoeffs c(8, 1);
+  c.a(5, 3) = 1.0;
+  c.a(2, -1) = 0.5;
+  const HermiteInterpolator interp(8, 2);
+  const HermiteData data = interp.node_data(c);
+  const double dphi = 2 * 3.14159265358979323846 / interp.n_phi();
+  for (int shift : {1, 7, interp.n_phi() - 1}) {
+    const double theta = 1.1, phi = 5.9;
+    Eigen::Matrix<double, 1, 1> shifted, direct;
+    interp.interpolate(data, interp.stencil(theta, phi), shifted, shift);
+    interp.interpolate(data, interp.stencil(theta, phi + shift * dphi), direct);
+    EXPECT_NEAR(shifted[0], direct[0], 1e-13) << "shift " << shift;
+  }
+}
