@@ -49,7 +49,8 @@ HermiteStencil HermiteInterpolator::stencil(double theta, double phi) const {
   hermite_basis(s, dtheta_, vs, ds);
   hermite_basis(t, dphi_, vt, dt);
   HermiteStencil st;
-  st.cell = i * n_phi() + j;
+  st.i = i;
+  st.j = j;
   st.theta_w = {vs[0], ds[0], vs[1], ds[1]};
   st.phi_w = {vt[0], dt[0], vt[1], dt[1]};
   return st;

@@ -21,7 +21,7 @@ using HermiteData = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 // form: the weight of corner (a, b) in {0,1}^2 and data type (d_theta, d_phi) is
 // theta_w[2 a + d_theta] * phi_w[2 b + d_phi] (value and slope basis at each end).
 struct HermiteStencil {
-  int cell = 0;                    // i * n_phi + j of the cell's (theta_i, phi_j) corner
+  int i = 0, j = 0;                // the cell's (theta_i, phi_j) corner
   std::array<double, 4> theta_w{};
   std::array<double, 4> phi_w{};
 };
@@ -45,8 +45,10 @@ class HermiteInterpolator {
   template <typename Out>
   void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift = 0) const {
     const int k = static_cast<int>(data.cols() / 4), np = n_phi();
-    const int i = s.cell / np, j = (s.cell % np + phi_shift) % np, j1 = (j + 1) % np;
-    const int nodes[4] = {i * np + j, i * np + j1, (i + 1) * np + j, (i + 1) * np + j1};
+    int j = s.j + phi_shift;  // no integer division: this runs for every patch point of every product
+    while (j >= np) j -= np;
+    const int j1 = j + 1 == np ? 0 : j + 1;
+    const int nodes[4] = {s.i * np + j, s.i * np + j1, (s.i + 1) * np + j, (s.i + 1) * np + j1};
     for (int c = 0; c < k; ++c) out[c] = 0.0;
     for (int corner = 0; corner < 4; ++corner) {
       const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "geometry/gauss_legendre.h"
 
 namespace rbcflow {
 
@@ -19,6 +18,13 @@ double patch_mask(double rho, double rho1) {
 
 std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int n_rho, int n_varphi,
                                     double delta) {
+  if (n_rho < 1) throw std::invalid_argument("polar_patch: bad radius, point counts or distance");
+  return polar_patch(theta0, phi0, rho1, gauss_legendre(n_rho), n_varphi, delta);
+}
+
+std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, const GaussLegendreRule& g,
+                                    int n_varphi, double delta) {
+  const int n_rho = static_cast<int>(g.theta.size());
   if (rho1 <= 0 || rho1 > std::numbers::pi || n_rho < 1 || n_varphi < 1 || delta < 0) {
     throw std::invalid_argument("polar_patch: bad radius, point counts or distance");
   }
@@ -28,7 +34,6 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int
   const Eigen::Vector3d u0(std::sin(theta0) * std::cos(phi0), std::sin(theta0) * std::sin(phi0), std::cos(theta0));
   const Eigen::Vector3d e1(-std::sin(phi0), std::cos(phi0), 0.0), e2 = u0.cross(e1);
 
-  const GaussLegendreRule g = gauss_legendre(n_rho);
   std::vector<double> rho(n_rho), w_rho(n_rho);
   const double mu = delta > 0 ? std::asinh(rho1 / delta) : 0.0;
   for (int a = 0; a < n_rho; ++a) {

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geometry/gauss_legendre.h"
+
 namespace rbcflow {
 
 // eta(rho) = exp(2 e^{-1/t} / (t - 1)), t = rho / rho_1 < 1; 0 beyond (eq. 31).
@@ -20,5 +22,8 @@ struct PatchPoint {
 // mu = asinh(rho_1 / delta), which clusters points near the centre (Johnston & Elliott 2005).
 std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, int n_rho, int n_varphi,
                                     double delta = 0.0);
+// The same with the n_rho-point Gauss-Legendre rule given (callers building many patches).
+std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, const GaussLegendreRule& radial,
+                                    int n_varphi, double delta = 0.0);
 
 }  // namespace rbcflow

@@ -135,6 +135,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     int target;  // the target whose geometry sets the parametric distance, or -1 (on the surface)
   };
   std::vector<TableCentre> centres;
+  const GaussLegendreRule radial = gauss_legendre(n_rho);
   for (int t = 0; t < n_targets; ++t) {
     const QuadratureTarget& target = targets[t];
     const int i = target.self_node / grid.n_phi(), j = target.self_node % grid.n_phi();
@@ -164,7 +165,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       cell.geometry_at(interp.stencil(centre.theta, centre.phi), xc, jc);
       delta = targets[centre.target].distance / std::sqrt(jc.norm());
     }
-    for (const PatchPoint& q : polar_patch(centre.theta, centre.phi, rho1, n_rho, n_varphi, delta)) {
+    for (const PatchPoint& q : polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta)) {
       if (q.weight == 0.0) continue;
       stencils->tables[b].push_back(interp.stencil(q.theta, q.phi));
       weights[b].push_back(q.weight);
