@@ -241,6 +241,11 @@ int run_check(Args& args) {
   if (c.domain.kind == DomainKind::periodic) print_ewald(c, count, memory);
   std::printf("solver:  GMRES tolerance %g, at most %d iterations\n", c.solver.gmres_tolerance,
               c.solver.max_iterations);
+  if (c.cells) {
+    const int radial = c.solver.patch_radial_points.value_or(default_radial_points(c.cells->order));
+    std::printf("         singular patches: %d radial x %d angular points (%s)\n", radial, 2 * radial,
+                c.solver.patch_radial_points ? "set" : "default, max(8, ceil(3 sqrt(N)))");
+  }
   print_output(c);
   std::printf("memory:  about %.0f MB (rough model: cells %.0f MB", memory.total() / 1e6, memory.cells / 1e6);
   if (memory.wall_nodes) {

@@ -131,6 +131,7 @@ RunSetup setup_run(const Case& c) {
   o.viscosity_ratio = c.domain.viscosity_ratio;
   o.gmres_tolerance = c.solver.gmres_tolerance;
   o.gmres_max_iterations = c.solver.max_iterations;
+  o.quadrature.radial_points = c.solver.patch_radial_points.value_or(0);
   o.volume_constraint = c.time.volume_constraint;
   o.wall_solve.tolerance = c.solver.gmres_tolerance;
   o.domain.ewald_tolerance = c.ewald.tolerance;

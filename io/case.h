@@ -117,6 +117,9 @@ struct CaseEwald {
 struct CaseSolver {
   double gmres_tolerance = 1e-6;
   int max_iterations = 100;
+  // Radial Gauss points of the singular and nearly-singular patches (section 5.4); the
+  // angular points are twice as many. Empty: libsolver's default, max(8, ceil(3 sqrt(N))).
+  std::optional<int> patch_radial_points;
   bool operator==(const CaseSolver&) const = default;
 };
 

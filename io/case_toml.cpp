@@ -503,6 +503,7 @@ CaseSolver read_solver(Table& top) {
   if (!t) return s;
   s.gmres_tolerance = t->real("gmres_tolerance", s.gmres_tolerance, open(0, 1));
   s.max_iterations = t->integer("max_iterations", s.max_iterations, 1, 100000);
+  s.patch_radial_points = t->optional_integer("patch_radial_points", 4, 64);
   t->finish();
   return s;
 }

@@ -224,6 +224,7 @@ std::string case_toml(const Case& c) {
   w.table("solver");
   w.key("gmres_tolerance", c.solver.gmres_tolerance);
   w.key("max_iterations", c.solver.max_iterations);
+  if (c.solver.patch_radial_points) w.key("patch_radial_points", *c.solver.patch_radial_points);
   write_time(w, c.time);
   write_output(w, c.output);
   return w.str();

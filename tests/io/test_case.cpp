@@ -52,6 +52,7 @@ spline_order = 6
 [solver]
 gmres_tolerance = 1e-6
 max_iterations = 100
+patch_radial_points = 24
 
 [time]
 end = 10.0
@@ -112,6 +113,7 @@ TEST(Case, ContractExampleReadsEveryKey) {
   EXPECT_EQ(c.cells->membrane.dilatation_modulus, 200.0);  // an integer where a float is expected
   EXPECT_EQ(c.ewald.grid, (std::array<int, 3>{64, 64, 128}));
   EXPECT_EQ(c.ewald.spline_order, 6);
+  EXPECT_EQ(c.solver.patch_radial_points, 24);
   EXPECT_FALSE(c.time.dt);  // "auto"
   EXPECT_EQ(c.output.dir, fs::path("out/tube6"));
   EXPECT_TRUE(c.output.xdmf && c.output.vtk);
@@ -130,6 +132,7 @@ TEST(Case, DefaultsAreFilledIn) {
   EXPECT_EQ(c.ewald.tolerance, 1e-6);
   EXPECT_FALSE(c.ewald.alpha);
   EXPECT_EQ(c.solver.max_iterations, 100);
+  EXPECT_FALSE(c.solver.patch_radial_points);  // libsolver's default for the order
   EXPECT_EQ(c.time.end, 10.0);
   EXPECT_EQ(c.time.scheme, TimeSchemeKind::euler);
   EXPECT_EQ(c.output.every, 100);
@@ -317,6 +320,8 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
   EXPECT_EQ(error_of(minimal("[ewald]\nspline_order = 6\ngrid = [16, 10, 16]\n")),
             "bad.toml:6: ewald.grid: 10 is out of range (allowed: integers 12..4096)");
   EXPECT_EQ(error_of(minimal("[ewald]\ngrid = [16, 17, 16]\n")), "bad.toml:5: ewald.grid: 17 is odd (grid sides are even)");
+  EXPECT_EQ(error_of(minimal("[solver]\npatch_radial_points = 2\n")),
+            "bad.toml:5: solver.patch_radial_points: 2 is out of range (allowed: integers 4..64)");
   EXPECT_EQ(error_of(minimal("[output]\nevery = 0\n")),
             "bad.toml:5: output.every: 0 is out of range (allowed: integers 1..2147483647)");
   EXPECT_EQ(error_of(minimal("[cells]\norder = 99999999999999\n")),
