@@ -38,6 +38,7 @@ constexpr Column kColumns[] = {
     {"at_wall", &StepTimings::at_wall_build},
     {"wall_op", &StepTimings::wall_at_cells_build},
     {"cell_prod", &StepTimings::cell_products},
+    {"prod_corr", &StepTimings::cell_corrections},
     {"wall_prod", &StepTimings::at_wall_products},
     {"wall_solve", &StepTimings::wall_solve},
     {"wall_vel", &StepTimings::wall_at_cells},

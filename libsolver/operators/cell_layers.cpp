@@ -90,7 +90,8 @@ Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& stacked, int c) co
   return stacked.middleRows(c * nodes_per_cell(), nodes_per_cell());
 }
 
-Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd& density) const {
+Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd& density) {
+  ScopedTimer timer(timings_.applied);
   const int np = nodes_per_cell();
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(density.rows(), 3);
   for (int c = 0; c < num_cells(); ++c) {

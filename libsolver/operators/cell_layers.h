@@ -21,11 +21,12 @@
 
 namespace rbcflow {
 
-// Wall-clock seconds of the constructor's stages (StepTimings).
+// Wall-clock seconds of the constructor's stages and of the corrections applied since (StepTimings).
 struct CellLayersTimings {
   double geometry = 0.0;  // quadrature geometry of every cell and the Ewald plans
   double self = 0.0;      // singular corrections
   double near = 0.0;      // near-target search and nearly-singular corrections
+  double applied = 0.0;   // the corrections applied in products so far (part of each product)
 };
 
 // The cost model of the cells' double-layer Ewald sum (ewald_parameters.h). Its plan serves
@@ -70,7 +71,7 @@ class CellLayers {
     std::unique_ptr<LayerCorrection> single, double_;
     std::vector<int> rows;  // stacked target rows
   };
-  Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density) const;
+  Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density);
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
 
   std::shared_ptr<const CellGrids> grids_;

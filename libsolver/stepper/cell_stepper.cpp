@@ -156,6 +156,7 @@ FlowSolution CellStepper::solve() const {
     const VelocitySolve v = solve_cell_velocity(*layers, s.traction, lambda, background, options_.gmres_tolerance,
                                                 options_.gmres_max_iterations, guess);
     products_timer.stop();
+    timing.cell_corrections = layers->build_timings().applied;
     if (!v.gmres.converged) {
       throw std::runtime_error("GMRES for the cell velocity did not converge" + at_step(step) + ": relative residual " +
                                std::to_string(v.gmres.relative_residual) + " after " +

@@ -13,6 +13,7 @@ struct StepTimings {
   double at_wall_build = 0.0;     // the cells' layers at the wall nodes (CellLayersAtPoints)
   double wall_at_cells_build = 0.0;  // the wall operator with the cell nodes as targets
   double cell_products = 0.0;     // cell-cell single and double layer products (10)
+  double cell_corrections = 0.0;  // of which: the singular and nearly-singular corrections applied
   double at_wall_products = 0.0;  // the cells' layers evaluated at the wall nodes (12)
   double wall_solve = 0.0;        // GMRES of (12)
   double wall_at_cells = 0.0;     // the wall's velocity at the cell nodes
