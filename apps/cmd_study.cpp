@@ -75,11 +75,19 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
 
 // Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write and
 // its diagnostics reach the last step (`steps`, or time.end).
+// The run in `dir` is of case c (whatever output directory it was run into: a run moved or
+// linked there counts) and reached its last step.
 bool finished_run(const Case& c, const fs::path& dir, long steps) {
   std::ifstream in(dir / "case.toml", std::ios::binary);
   if (!in || !fs::is_regular_file(dir / "diagnostics.csv")) return false;
   const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (written != case_toml(c)) return false;
+  Case here = c;
+  try {
+    here.output.dir = parse_case(written, dir / "case.toml").output.dir;
+  } catch (const InputError&) {
+    return false;  // not a case file rbcflow wrote: run again
+  }
+  if (written != case_toml(here)) return false;
   const CsvTable d = read_csv(dir / "diagnostics.csv");
   const long last = steps > 0 ? steps : std::max(1L, static_cast<long>(std::ceil(c.time.end / time_step(c) - 1e-9)));
   return !d.rows.empty() && std::stol(d.rows.back()[d.column("step")]) == last;
@@ -96,7 +104,7 @@ void print_help() {
       "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n"
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
-      "  runs made separately with rbcflow run CASE.toml --out DIR/<case name>.\n"
+      "  runs made separately with rbcflow run CASE.toml --out DIR/<case name> (or moved there).\n"
       "  A run that fails (blow-up) is reported and left out; the others are still collected,\n"
       "  and the exit status is then 1.\n");
 }
