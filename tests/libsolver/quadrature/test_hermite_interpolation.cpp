@@ -52,7 +52,7 @@ TEST(HermiteInterpolation, PhiShiftMovesTheStencilByWholeCells) {
   // shifted stencil must interpolate at phi + shift * dphi, across the seam phi = 2 pi too.
   SHCoeffs c(8, 1);
   c.a(5, 3) = 1.0;
-  c.a(2, -1) = 0.5;
+  c.b(2, 1) = 0.5;
   const HermiteInterpolator interp(8, 2);
   const HermiteData data = interp.node_data(c);
   const double dphi = 2 * 3.14159265358979323846 / interp.n_phi();
