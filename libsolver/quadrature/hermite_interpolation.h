@@ -6,6 +6,7 @@
 // no pole needs special care. O(h^4) accurate.
 #include <Eigen/Core>
 #include <array>
+#include <cassert>
 #include <memory>
 
 #include "geometry/sph_transform.h"
@@ -40,27 +41,67 @@ class HermiteInterpolator {
 
   HermiteStencil stencil(double theta, double phi) const;
 
-  // Interpolated components at a stencil (k = data.cols() / 4 values). phi_shift moves the
+  // The K interpolated components at a stencil (data.cols() == 4 K). phi_shift moves the
   // stencil by whole grid cells in phi (>= 0): the point (theta, phi + phi_shift * 2 pi / n_phi).
-  template <typename Out>
+  // K is a compile-time constant so that the sums stay in registers: this runs for every patch
+  // point of every GMRES product.
+  template <int K, typename Out>
   void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift = 0) const {
-    const int k = static_cast<int>(data.cols() / 4), np = n_phi();
+    assert(data.cols() == 4 * K);
+    const int np = n_phi();
+    int j = s.j + phi_shift;  // no integer division
+    while (j >= np) j -= np;
+    const int j1 = j + 1 == np ? 0 : j + 1;
+    const int nodes[4] = {s.i * np + j, s.i * np + j1, (s.i + 1) * np + j, (s.i + 1) * np + j1};
+    double sum[K] = {};
+    for (int corner = 0; corner < 4; ++corner) {
+      const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * (4 * K);
+      const double* wt = &s.theta_w[2 * (corner / 2)];
+      const double* wp = &s.phi_w[2 * (corner % 2)];
+      const double w[4] = {wt[0] * wp[0], wt[1] * wp[0], wt[0] * wp[1], wt[1] * wp[1]};
+      for (int c = 0; c < K; ++c)
+        sum[c] += w[0] * row[4 * c] + w[1] * row[4 * c + 1] + w[2] * row[4 * c + 2] + w[3] * row[4 * c + 3];
+    }
+    for (int c = 0; c < K; ++c) out[c] = sum[c];
+  }
+
+ private:
+  // The four corner rows a stencil reads and their weights per data type.
+  struct Corners {
+    const double* row[4];
+    double w[4][4];
+  };
+  Corners corners(const HermiteData& data, const HermiteStencil& s, int phi_shift) const {
+    const int np = n_phi();
     int j = s.j + phi_shift;  // no integer division: this runs for every patch point of every product
     while (j >= np) j -= np;
     const int j1 = j + 1 == np ? 0 : j + 1;
     const int nodes[4] = {s.i * np + j, s.i * np + j1, (s.i + 1) * np + j, (s.i + 1) * np + j1};
-    for (int c = 0; c < k; ++c) out[c] = 0.0;
+    Corners c;
     for (int corner = 0; corner < 4; ++corner) {
-      const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();
+      c.row[corner] = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();
       const double* wt = &s.theta_w[2 * (corner / 2)];
       const double* wp = &s.phi_w[2 * (corner % 2)];
-      const double w[4] = {wt[0] * wp[0], wt[1] * wp[0], wt[0] * wp[1], wt[1] * wp[1]};
-      for (int c = 0; c < k; ++c)
-        out[c] += w[0] * row[4 * c] + w[1] * row[4 * c + 1] + w[2] * row[4 * c + 2] + w[3] * row[4 * c + 3];
+      c.w[corner][0] = wt[0] * wp[0];
+      c.w[corner][1] = wt[1] * wp[0];
+      c.w[corner][2] = wt[0] * wp[1];
+      c.w[corner][3] = wt[1] * wp[1];
     }
+    return c;
+  }
+  // The hot path (patch points of every GMRES product): K known at compile time, sums kept in
+  // registers (writing through `out` inside the loop would make every store a possible alias
+  // of the node data).
+  template <int K, typename Out>
+  void interpolate_fixed(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift) const {
+    const Corners c = corners(data, s, phi_shift);
+    double sum[K] = {};
+    for (int corner = 0; corner < 4; ++corner)
+      for (int comp = 0; comp < K; ++comp)
+        for (int d = 0; d < 4; ++d) sum[comp] += c.w[corner][d] * c.row[corner][4 * comp + d];
+    for (int comp = 0; comp < K; ++comp) out[comp] = sum[comp];
   }
 
- private:
   std::shared_ptr<const SHTransform> transform_;
   double dtheta_, dphi_;
 };

@@ -83,8 +83,8 @@ std::vector<QuadratureTarget> CellQuadratureGeometry::node_targets() const {
 
 void CellQuadratureGeometry::geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn,
                                          int phi_shift) const {
-  interp_->interpolate(x_data_, s, x, phi_shift);
-  interp_->interpolate(jn_data_, s, jn, phi_shift);
+  interp_->interpolate<3>(x_data_, s, x, phi_shift);
+  interp_->interpolate<3>(jn_data_, s, jn, phi_shift);
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
@@ -253,7 +253,7 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHC
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (std::size_t q = 0; q < table.size(); ++q) {
       Eigen::Vector3d psi;
-      interp.interpolate(data, table[q], psi, shift);
+      interp.interpolate<3>(data, table[q], psi, shift);
       sum += times(k[q], psi);
     }
     for (const NodeEntry& e : nodes_[t]) sum += times(e.k, Eigen::Vector3d(density.row(e.node)));

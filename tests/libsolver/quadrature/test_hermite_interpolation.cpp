@@ -25,7 +25,7 @@ TEST(HermiteInterpolation, ConvergesAtFourthOrderEverywhereIncludingThePoles) {
     double err = 0.0;
     for (auto [t, p] : pts) {
       Eigen::Vector2d v;
-      interp.interpolate(data, interp.stencil(t, p), v);
+      interp.interpolate<2>(data, interp.stencil(t, p), v);
       err = std::max(err, (v - sh_evaluate(c, t, p).transpose()).cwiseAbs().maxCoeff());
     }
     std::printf("  %2d          %.3e\n", r, err);
@@ -43,7 +43,7 @@ TEST(HermiteInterpolation, ReproducesNodeValues) {
   const HermiteData data = interp.node_data(c);
   Eigen::Matrix<double, 1, 1> v;
   const double dtheta = 3.14159265358979323846 / (interp.n_theta() - 1);
-  interp.interpolate(data, interp.stencil(5 * dtheta, 0.0), v);
+  interp.interpolate<1>(data, interp.stencil(5 * dtheta, 0.0), v);
   EXPECT_NEAR(v[0], sh_evaluate(c, 5 * dtheta, 0.0)[0], 1e-14);
 }
 
@@ -59,8 +59,8 @@ TEST(HermiteInterpolation, PhiShiftMovesTheStencilByWholeCells) {
   for (int shift : {1, 7, interp.n_phi() - 1}) {
     const double theta = 1.1, phi = 5.9;
     Eigen::Matrix<double, 1, 1> shifted, direct;
-    interp.interpolate(data, interp.stencil(theta, phi), shifted, shift);
-    interp.interpolate(data, interp.stencil(theta, phi + shift * dphi), direct);
+    interp.interpolate<1>(data, interp.stencil(theta, phi), shifted, shift);
+    interp.interpolate<1>(data, interp.stencil(theta, phi + shift * dphi), direct);
     EXPECT_NEAR(shifted[0], direct[0], 1e-13) << "shift " << shift;
   }
 }
