@@ -14,4 +14,12 @@ namespace rbcflow {
 using LegendreTables = std::vector<std::vector<Eigen::MatrixXd>>;
 LegendreTables legendre_theta_tables(const Eigen::VectorXd& theta, int L, int max_derivative);
 
+// The same at one colatitude, for point evaluations in hot loops (surface projection): no
+// allocation, the recurrence coefficients of each L computed once per thread, the same
+// arithmetic as legendre_theta_tables. d^k/dtheta^k Pbar_n^m goes to
+// p[k * legendre_size(L) + legendre_index(L, n, m)]; p holds (max_derivative + 1) legendre_size(L).
+constexpr int legendre_size(int L) { return L * (L + 1) / 2; }
+constexpr int legendre_index(int L, int n, int m) { return m * L - m * (m - 1) / 2 + (n - m); }
+void legendre_theta_point(double theta, int L, int max_derivative, double* p);
+
 }  // namespace rbcflow

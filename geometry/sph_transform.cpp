@@ -209,20 +209,28 @@ Eigen::RowVectorXd sh_evaluate(const SHCoeffs& c, double theta, double phi, int 
 
 SHJet sh_evaluate_jet(const SHCoeffs& c, double theta, double phi) {
   if (c.components() != 3) throw std::invalid_argument("sh_evaluate_jet: need 3 components");
-  const int nc = c.order();
-  const LegendreTables t = legendre_theta_tables(Eigen::VectorXd::Constant(1, theta), nc, 2);
+  const int nc = c.order(), size = legendre_size(nc);
+  // Called in every Newton step of every surface projection: no allocation.
+  thread_local std::vector<double> legendre;
+  legendre.resize(3 * static_cast<std::size_t>(size));
+  legendre_theta_point(theta, nc, 2, legendre.data());
+  const Eigen::MatrixXd& v = c.values();
   SHJet j;
   j.x = j.x_t = j.x_p = j.x_tt = j.x_tp = j.x_pp = Eigen::Vector3d::Zero();
   const double c1 = std::cos(phi), s1 = std::sin(phi);
   double cm = 1.0, sm = 0.0;  // cos(m phi), sin(m phi) by the angle-addition recurrence
   for (int m = 0; m < nc; ++m) {
-    const int len = nc - m;
-    const auto cos_block = c.values().middleRows(SHCoeffs::cos_offset(nc, m), len);
+    const int len = nc - m, cos_row = SHCoeffs::cos_offset(nc, m), sin_row = SHCoeffs::sin_offset(nc, m);
     Eigen::Vector3d A[3], B[3];  // theta derivative k of the cos and sin parts
     for (int k = 0; k < 3; ++k) {
-      A[k] = (t[k][m].row(0) * cos_block).transpose();
-      B[k] = m > 0 ? Eigen::Vector3d((t[k][m].row(0) * c.values().middleRows(SHCoeffs::sin_offset(nc, m), len)).transpose())
-                   : Eigen::Vector3d::Zero();
+      const double* p = legendre.data() + k * size + legendre_index(nc, m, m);
+      A[k].setZero();
+      B[k].setZero();
+      for (int i = 0; i < len; ++i) {
+        for (int comp = 0; comp < 3; ++comp) A[k][comp] += p[i] * v(cos_row + i, comp);
+        if (m > 0)
+          for (int comp = 0; comp < 3; ++comp) B[k][comp] += p[i] * v(sin_row + i, comp);
+      }
     }
     j.x += cm * A[0] + sm * B[0];
     j.x_t += cm * A[1] + sm * B[1];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "geometry/gauss_legendre.h"
 
@@ -49,6 +50,24 @@ TEST(Legendre, ThetaDerivativesMatchClosedForms) {
     for (int k = 0; k <= 4; ++k) {
       EXPECT_NEAR(t[k][0](i, 2), d20[k], 1e-13) << "k = " << k << " theta = " << theta[i];
       EXPECT_NEAR(t[k][2](i, 0), d22[k], 1e-13) << "k = " << k << " theta = " << theta[i];
+    }
+  }
+}
+
+// The one-point version (surface projection's Newton steps) runs the same recurrences: it must
+// give the tables' numbers bit for bit, at the poles too, and for a second L on the same thread
+// (the coefficient cache is per L).
+TEST(Legendre, OnePointEqualsTheTablesExactly) {
+  for (int L : {1, 2, 7, 17}) {
+    for (double theta : {0.0, 1e-9, 0.3, 1.5707963267948966, 2.9, 3.141592653589793}) {
+      const rbcflow::LegendreTables t = legendre_theta_tables(Eigen::VectorXd::Constant(1, theta), L, 2);
+      std::vector<double> p(3 * rbcflow::legendre_size(L), -1.0);
+      rbcflow::legendre_theta_point(theta, L, 2, p.data());
+      for (int k = 0; k <= 2; ++k)
+        for (int m = 0; m < L; ++m)
+          for (int n = m; n < L; ++n)
+            EXPECT_EQ(p[k * rbcflow::legendre_size(L) + rbcflow::legendre_index(L, n, m)], t[k][m](0, n - m))
+                << "L " << L << " theta " << theta << " k " << k << " n " << n << " m " << m;
     }
   }
 }
