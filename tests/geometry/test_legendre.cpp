@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -55,9 +56,12 @@ TEST(Legendre, ThetaDerivativesMatchClosedForms) {
 }
 
 // The one-point version (surface projection's Newton steps) runs the same recurrences: it must
-// give the tables' numbers bit for bit, at the poles too, and for a second L on the same thread
-// (the coefficient cache is per L).
-TEST(Legendre, OnePointEqualsTheTablesExactly) {
+// give the tables' numbers to rounding (bit for bit in the Release build; at other optimisation
+// levels with FMA the two fuse different products, and the recurrence in n carries the
+// difference: 1e-14 relative, times (n + 1)^k for the k-th derivative, whose recurrence
+// multiplies by coefficients of order n), at the poles too, and for a second L on the same
+// thread (the coefficient cache is per L).
+TEST(Legendre, OnePointMatchesTheTables) {
   for (int L : {1, 2, 7, 17}) {
     for (double theta : {0.0, 1e-9, 0.3, 1.5707963267948966, 2.9, 3.141592653589793}) {
       const rbcflow::LegendreTables t = legendre_theta_tables(Eigen::VectorXd::Constant(1, theta), L, 2);
@@ -66,7 +70,8 @@ TEST(Legendre, OnePointEqualsTheTablesExactly) {
       for (int k = 0; k <= 2; ++k)
         for (int m = 0; m < L; ++m)
           for (int n = m; n < L; ++n)
-            EXPECT_EQ(p[k * rbcflow::legendre_size(L) + rbcflow::legendre_index(L, n, m)], t[k][m](0, n - m))
+            EXPECT_NEAR(p[k * rbcflow::legendre_size(L) + rbcflow::legendre_index(L, n, m)], t[k][m](0, n - m),
+                        1e-14 * std::pow(n + 1.0, k) * std::max(1.0, std::abs(t[k][m](0, n - m))))
                 << "L " << L << " theta " << theta << " k " << k << " n " << n << " m " << m;
     }
   }
