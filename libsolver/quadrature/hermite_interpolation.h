@@ -66,42 +66,6 @@ class HermiteInterpolator {
   }
 
  private:
-  // The four corner rows a stencil reads and their weights per data type.
-  struct Corners {
-    const double* row[4];
-    double w[4][4];
-  };
-  Corners corners(const HermiteData& data, const HermiteStencil& s, int phi_shift) const {
-    const int np = n_phi();
-    int j = s.j + phi_shift;  // no integer division: this runs for every patch point of every product
-    while (j >= np) j -= np;
-    const int j1 = j + 1 == np ? 0 : j + 1;
-    const int nodes[4] = {s.i * np + j, s.i * np + j1, (s.i + 1) * np + j, (s.i + 1) * np + j1};
-    Corners c;
-    for (int corner = 0; corner < 4; ++corner) {
-      c.row[corner] = data.data() + static_cast<std::size_t>(nodes[corner]) * data.cols();
-      const double* wt = &s.theta_w[2 * (corner / 2)];
-      const double* wp = &s.phi_w[2 * (corner % 2)];
-      c.w[corner][0] = wt[0] * wp[0];
-      c.w[corner][1] = wt[1] * wp[0];
-      c.w[corner][2] = wt[0] * wp[1];
-      c.w[corner][3] = wt[1] * wp[1];
-    }
-    return c;
-  }
-  // The hot path (patch points of every GMRES product): K known at compile time, sums kept in
-  // registers (writing through `out` inside the loop would make every store a possible alias
-  // of the node data).
-  template <int K, typename Out>
-  void interpolate_fixed(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift) const {
-    const Corners c = corners(data, s, phi_shift);
-    double sum[K] = {};
-    for (int corner = 0; corner < 4; ++corner)
-      for (int comp = 0; comp < K; ++comp)
-        for (int d = 0; d < 4; ++d) sum[comp] += c.w[corner][d] * c.row[corner][4 * comp + d];
-    for (int comp = 0; comp < K; ++comp) out[comp] = sum[comp];
-  }
-
   std::shared_ptr<const SHTransform> transform_;
   double dtheta_, dphi_;
 };
