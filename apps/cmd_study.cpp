@@ -73,10 +73,9 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
   }
 }
 
-// Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write and
-// its diagnostics reach the last step (`steps`, or time.end).
-// The run in `dir` is of case c (whatever output directory it was run into: a run moved or
-// linked there counts) and reached its last step.
+// Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write up to
+// output.dir (a run made into another directory and moved or linked there counts) and its
+// diagnostics reach the last step (`steps`, or time.end).
 bool finished_run(const Case& c, const fs::path& dir, long steps) {
   std::ifstream in(dir / "case.toml", std::ios::binary);
   if (!in || !fs::is_regular_file(dir / "diagnostics.csv")) return false;
