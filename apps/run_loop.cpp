@@ -223,7 +223,6 @@ void run_case(const RunRequest& request) {
     throw std::runtime_error(message);
   }
   if (!quiet) std::printf("done: %ld steps, t = %.5g, output in %s\n", last - first, stepper.time(), c.output.dir.c_str());
-  if (!quiet) std::printf("done: %ld steps, t = %.5g, output in %s\n", last - first, stepper.time(), c.output.dir.c_str());
 }
 
 }  // namespace rbcflow::cli
