@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <omp.h>
 #include <string>
 #include <vector>
 
+#include "child_runs.h"
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
@@ -92,9 +94,60 @@ bool finished_run(const Case& c, const fs::path& dir, long steps) {
   return !d.rows.empty() && std::stol(d.rows.back()[d.column("step")]) == last;
 }
 
+// The last non-empty line of a log: a failed run's error message.
+std::string last_line(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  return last.empty() ? "no message in " + log.string() : last;
+}
+
+// Runs the cases not reused as `rbcflow run` processes, `jobs` at a time, each with its share
+// of the threads and its output in DIR/<case>.log; a failed run's message goes to failure[k].
+void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path>& case_files,
+                      const std::vector<bool>& reused, const std::string& steps_text, const fs::path& out, int jobs,
+                      bool quiet, std::vector<std::string>& failure) {
+  std::vector<ChildRun> runs;
+  std::vector<std::size_t> which;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (reused[k]) continue;
+    ChildRun r;
+    r.args = {"run", case_files[k].string(), "--out", cases[k].output.dir.string()};
+    if (!steps_text.empty()) r.args.insert(r.args.end(), {"--steps", steps_text});
+    r.log = out / (case_files[k].stem().string() + ".log");
+    runs.push_back(std::move(r));
+    which.push_back(k);
+  }
+  if (runs.empty()) return;
+  const int threads = std::max(1, omp_get_max_threads() / jobs);
+  if (!quiet) {
+    std::printf("running %zu cases, %d at a time with %d thread%s each; logs in %s/<case>.log\n", runs.size(), jobs,
+                threads, threads == 1 ? "" : "s", out.c_str());
+  }
+  std::fflush(stdout);
+  const auto started = [&](std::size_t i) {
+    if (!quiet) std::printf("== %s: started\n", case_files[which[i]].stem().c_str());
+    std::fflush(stdout);
+  };
+  const auto done = [&](std::size_t i, const ChildResult& r) {
+    const std::size_t k = which[i];
+    if (r.exit_status != 0) {
+      failure[k] = "exit status " + std::to_string(r.exit_status) + ": " + last_line(runs[i].log);
+    }
+    if (!quiet) {
+      std::printf("== %s: %s after %.0f s\n", case_files[k].stem().c_str(), r.exit_status == 0 ? "finished" : "failed",
+                  r.seconds);
+    }
+    std::fflush(stdout);
+  };
+  run_children(runs, jobs, threads, started, done);
+}
+
 void print_help() {
   std::printf(
-      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse] [--quiet]\n"
+      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse] [--jobs J] [--quiet]\n"
       "  Runs every case (straight tubes with cells, e.g. data/cases/fahraeus/quick/*.toml) into\n"
       "  DIR/<case name>/, averages the effective viscosity (45)-(46) over time >= F x the run's\n"
       "  end (default F = 0.5) with a batch-means standard error, and writes DIR/study.csv,\n"
@@ -104,6 +157,9 @@ void print_help() {
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
       "  runs made separately with rbcflow run CASE.toml --out DIR/<case name> (or moved there).\n"
+      "  --jobs J runs J cases at a time, each as its own rbcflow run process with its share of the\n"
+      "  threads (OMP_NUM_THREADS / J) and its output in DIR/<case name>.log: faster than one case\n"
+      "  after another when a case leaves cores idle (list the longest cases first).\n"
       "  A run that fails (blow-up) is reported and left out; the others are still collected,\n"
       "  and the exit status is then 1.\n");
 }
@@ -115,16 +171,20 @@ int run_study(Args& args) {
     print_help();
     return 0;
   }
-  std::string out, fraction_text, steps_text;
+  std::string out, fraction_text, steps_text, jobs_text;
   if (!args.option("-o", out)) throw UsageError("rbcflow study: missing -o DIR");
   const bool quiet = args.flag("--quiet"), reuse = args.flag("--reuse");
   args.option("--steady-fraction", fraction_text);
   args.option("--steps", steps_text);
+  args.option("--jobs", jobs_text);
   std::vector<fs::path> case_files{args.positional("case file (CASE.toml)")};
   for (std::string more; !(more = args.next_positional()).empty();) case_files.emplace_back(more);
   args.finish();
   const double fraction = fraction_text.empty() ? 0.5 : parse_number(fraction_text, "--steady-fraction", 0.0, 1.0);
   const long steps = steps_text.empty() ? 0 : static_cast<long>(parse_number(steps_text, "--steps", 1, 1e9));
+  const double jobs_value = jobs_text.empty() ? 1 : parse_number(jobs_text, "--jobs", 1, 256);
+  if (jobs_value != std::floor(jobs_value)) throw UsageError("rbcflow study: --jobs must be a whole number, got '" + jobs_text + "'");
+  const int jobs = static_cast<int>(jobs_value);
 
   // Every case is read and checked before the first (long) run.
   std::vector<Case> cases;
@@ -139,6 +199,12 @@ int run_study(Args& args) {
   ensure_display();  // renders and the plot
   fs::create_directories(fs::path(out) / "renders");
 
+  std::vector<bool> reused(cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) reused[k] = reuse && finished_run(cases[k], cases[k].output.dir, steps);
+  // With --jobs, the runs first, side by side; their failures are collected below.
+  std::vector<std::string> child_failure(cases.size());
+  if (jobs > 1) run_side_by_side(cases, case_files, reused, steps_text, fs::path(out), jobs, quiet, child_failure);
+
   CsvWriter csv(fs::path(out) / "study.csv", study_columns());
   StudyPlot plot;
   double hematocrit_sum = 0;
@@ -146,11 +212,15 @@ int run_study(Args& args) {
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     const std::string stem = case_files[k].stem().string();
-    if (!quiet) std::printf("== %s (%zu of %zu)\n", stem.c_str(), k + 1, cases.size());
+    if (!quiet && jobs == 1) std::printf("== %s (%zu of %zu)\n", stem.c_str(), k + 1, cases.size());
     std::fflush(stdout);
-    if (reuse && finished_run(c, c.output.dir, steps)) {
+    if (reused[k]) {
       if (!quiet) std::printf("reusing the finished run in %s\n", c.output.dir.c_str());
-    } else {
+    } else if (!child_failure[k].empty()) {
+      std::fprintf(stderr, "rbcflow study: %s failed, left out of the study: %s\n", stem.c_str(), child_failure[k].c_str());
+      failed.push_back(stem);
+      continue;
+    } else if (jobs == 1) {
       try {
         run_case(RunRequest{c, {}, steps, quiet});
       } catch (const InputError&) {
