@@ -2,12 +2,16 @@
 // periodic box, h_s = 0.04. Argument: the lattice gap, 0.5 (nothing within h_s: detection by
 // bounding spheres only) or 0.02 (every cell within h_s of its six neighbours, 81 pairs with
 // the periodic images). Counters: pairs found, detection passes.
+// BM_PlaceTubeCells/K: random placement of K red cells (N = 16) at the tube hematocrit 0.30 in
+// the D = 6 tube of bench_step's tubeK cases (sequential addition, then compression).
 //   build/bin/bench_collision
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
+#include "geometry/cell_placement.h"
 #include "geometry/reference_shapes.h"
+#include "geometry/vessel.h"
 #include "libsolver/stepper/collision.h"
 
 using namespace rbcflow;
@@ -37,6 +41,26 @@ void BM_Collision27Cells(benchmark::State& state) {
   state.counters["passes"] = r.passes;
 }
 BENCHMARK(BM_Collision27Cells)->Arg(50)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_PlaceTubeCells(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0));
+  const Eigen::Vector3d box(6.6, 6.6, 13.33 * count / 27.0);
+  const VesselMesh vessel = tube(TubeSpec{6.0, 2, box, 0.25});
+  const SHSurface rbc = make_biconcave(16);
+  PlacementSpec spec;
+  spec.box = box;
+  spec.count = count;
+  spec.gap = 0.05;
+  spec.seed = 1;
+  int sweeps = 0;
+  for (auto _ : state) {
+    const Placement p = place_cells(rbc, spec, &vessel);
+    benchmark::DoNotOptimize(p.cells.data());
+    sweeps = p.compression_sweeps;
+  }
+  state.counters["sweeps"] = sweeps;
+}
+BENCHMARK(BM_PlaceTubeCells)->Arg(8)->Arg(27)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

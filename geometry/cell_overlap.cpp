@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -42,18 +43,24 @@ CellOverlap::CellOverlap(const SHSurface& reference, int check_order, const Eige
   }
 }
 
-// Every vertex of b (moved by `shift`) outside a and at least gap from a's triangles.
+// Every vertex of b (moved by `shift`) outside a and at least gap from a's triangles. The
+// vertices are checked by all threads (placement runs thousands of these tests one after
+// another); the first failure stops the others' remaining checks.
 bool CellOverlap::vertices_apart(const CellPose& a, const CellPose& b, const Eigen::Vector3d& shift) const {
   const Eigen::Matrix3d to_a = a.rotation.transpose() / a.scale;
   const double reach = radius_ + gap_ / a.scale;
+  std::atomic<bool> apart{true};
+#pragma omp parallel for schedule(static)
   for (int v = 0; v < mesh_.num_points(); ++v) {
+    if (!apart.load(std::memory_order_relaxed)) continue;
     const Eigen::Vector3d x = b.rotation * (b.scale * mesh_.points.row(v).transpose()) + b.position + shift;
     const Eigen::Vector3d y = to_a * (x - a.position);  // in a's unscaled body frame
     if (y.norm() > reach) continue;
     const TriangleAabbTree::ClosestPoint c = tree_.closest_point(y);
-    if (c.distance * a.scale < gap_ || (y - c.point).dot(normals_.row(c.triangle).transpose()) < 0) return false;
+    if (c.distance * a.scale < gap_ || (y - c.point).dot(normals_.row(c.triangle).transpose()) < 0)
+      apart.store(false, std::memory_order_relaxed);
   }
-  return true;
+  return apart;
 }
 
 bool CellOverlap::apart(const CellPose& a, const CellPose& b, bool same) const {
@@ -78,11 +85,14 @@ bool CellOverlap::inside_wall(const CellPose& a) const {
   const double centre = wall_->closest(a.position).signed_distance;
   if (centre >= radius_ * a.scale + gap_) return true;
   if (centre <= 0) return false;
+  std::atomic<bool> inside{true};  // threads as in vertices_apart
+#pragma omp parallel for schedule(static)
   for (int v = 0; v < mesh_.num_points(); ++v) {
+    if (!inside.load(std::memory_order_relaxed)) continue;
     const Eigen::Vector3d x = a.rotation * (a.scale * mesh_.points.row(v).transpose()) + a.position;
-    if (wall_->closest(x).signed_distance < gap_) return false;
+    if (wall_->closest(x).signed_distance < gap_) inside.store(false, std::memory_order_relaxed);
   }
-  return true;
+  return inside;
 }
 
 }  // namespace rbcflow
