@@ -15,8 +15,8 @@ using LegendreTables = std::vector<std::vector<Eigen::MatrixXd>>;
 LegendreTables legendre_theta_tables(const Eigen::VectorXd& theta, int L, int max_derivative);
 
 // The same at one colatitude, for point evaluations in hot loops (surface projection): no
-// allocation, the recurrence coefficients of each L computed once per thread, the same
-// arithmetic as legendre_theta_tables. d^k/dtheta^k Pbar_n^m goes to
+// allocation, the recurrence coefficients of each L computed once per thread;
+// legendre_theta_tables is this, colatitude by colatitude. d^k/dtheta^k Pbar_n^m goes to
 // p[k * legendre_size(L) + legendre_index(L, n, m)]; p holds (max_derivative + 1) legendre_size(L).
 constexpr int legendre_size(int L) { return L * (L + 1) / 2; }
 constexpr int legendre_index(int L, int n, int m) { return m * L - m * (m - 1) / 2 + (n - m); }

@@ -55,24 +55,21 @@ TEST(Legendre, ThetaDerivativesMatchClosedForms) {
   }
 }
 
-// The one-point version (surface projection's Newton steps) runs the same recurrences: it must
-// give the tables' numbers to rounding (bit for bit in the Release build; at other optimisation
-// levels with FMA the two fuse different products, and the recurrence in n carries the
-// difference: 1e-14 relative, times (n + 1)^k for the k-th derivative, whose recurrence
-// multiplies by coefficients of order n), at the poles too, and for a second L on the same
-// thread (the coefficient cache is per L).
-TEST(Legendre, OnePointMatchesTheTables) {
-  for (int L : {1, 2, 7, 17}) {
-    for (double theta : {0.0, 1e-9, 0.3, 1.5707963267948966, 2.9, 3.141592653589793}) {
-      const rbcflow::LegendreTables t = legendre_theta_tables(Eigen::VectorXd::Constant(1, theta), L, 2);
-      std::vector<double> p(3 * rbcflow::legendre_size(L), -1.0);
-      rbcflow::legendre_theta_point(theta, L, 2, p.data());
-      for (int k = 0; k <= 2; ++k)
-        for (int m = 0; m < L; ++m)
-          for (int n = m; n < L; ++n)
-            EXPECT_NEAR(p[k * rbcflow::legendre_size(L) + rbcflow::legendre_index(L, n, m)], t[k][m](0, n - m),
-                        1e-14 * std::pow(n + 1.0, k) * std::max(1.0, std::abs(t[k][m](0, n - m))))
-                << "L " << L << " theta " << theta << " k " << k << " n " << n << " m " << m;
+// The one-point version (what the tables are built from) in its packed layout, switching between
+// orders on one thread (the recurrence coefficients are cached per L): closed forms of
+// Pbar_1^1 = sqrt(3/4) sin t and Pbar_2^2 = sqrt(5/48) 3 sin^2 t and their theta derivatives.
+TEST(Legendre, OnePointPackedLayoutForEachOrder) {
+  for (int L : {3, 17, 3, 40}) {
+    for (double theta : {0.0, 0.3, 1.5707963267948966, 2.9, 3.141592653589793}) {
+      const int size = rbcflow::legendre_size(L);
+      std::vector<double> p(2 * size, -1.0);
+      rbcflow::legendre_theta_point(theta, L, 1, p.data());
+      const double s = std::sin(theta), c = std::cos(theta);
+      const auto at = [&](int k, int n, int m) { return p[k * size + rbcflow::legendre_index(L, n, m)]; };
+      EXPECT_NEAR(at(0, 1, 1), std::sqrt(0.75) * s, 1e-15) << "L " << L << " theta " << theta;
+      EXPECT_NEAR(at(1, 1, 1), std::sqrt(0.75) * c, 1e-15) << "L " << L << " theta " << theta;
+      EXPECT_NEAR(at(0, 2, 2), std::sqrt(5.0 / 48.0) * 3 * s * s, 1e-15) << "L " << L << " theta " << theta;
+      EXPECT_NEAR(at(1, 2, 2), std::sqrt(5.0 / 48.0) * 6 * s * c, 1e-14) << "L " << L << " theta " << theta;
     }
   }
 }
