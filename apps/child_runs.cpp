@@ -12,20 +12,14 @@
 #include <map>
 #include <stdexcept>
 
+#include "self_executable.h"
+
 extern char** environ;
 
 namespace rbcflow::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string self_executable() {
-  char self[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
-  if (n <= 0) throw std::runtime_error("cannot find this executable (/proc/self/exe) to run the cases");
-  self[n] = '\0';
-  return self;
-}
 
 // This process's environment with OMP_NUM_THREADS replaced: built before fork, because a child
 // of a multithreaded process may only make async-signal-safe calls until it execs.
@@ -81,6 +75,7 @@ std::vector<ChildResult> run_children(const std::vector<ChildRun>& runs, int job
                                       const std::function<void(std::size_t, const ChildResult&)>& on_done) {
   if (jobs < 1 || threads < 1) throw std::invalid_argument("run_children: jobs and threads must be positive");
   const std::string exe = self_executable();
+  if (exe.empty()) throw std::runtime_error("cannot find this executable (/proc/self/exe) to run the cases");
   std::vector<std::string> env = child_environment(threads);
   std::vector<ChildResult> results(runs.size());
   std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/render.h"
+#include "self_executable.h"
 
 namespace rbcflow::cli {
 
@@ -22,21 +23,19 @@ void ensure_display() {
     throw std::runtime_error("xvfb-run started no X display (DISPLAY is still unset)");
   }
   // This process's own command line, to run it again.
-  char self[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  const std::string self = self_executable();
   std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
   const std::string all((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
-  if (n <= 0 || all.empty()) {
+  if (self.empty() || all.empty()) {
     throw std::runtime_error("no X display, and cannot find this command line to run it under xvfb-run");
   }
-  self[n] = '\0';
   std::vector<std::string> argv;
   for (std::size_t start = 0; start < all.size();) {
     const std::size_t end = all.find('\0', start);
     argv.push_back(all.substr(start, end - start));
     start = end == std::string::npos ? all.size() : end + 1;
   }
-  std::vector<const char*> args = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset", self};
+  std::vector<const char*> args = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset", self.c_str()};
   for (std::size_t i = 1; i < argv.size(); ++i) args.push_back(argv[i].c_str());
   args.push_back(nullptr);
   ::setenv("RBCFLOW_UNDER_XVFB", "1", 1);
