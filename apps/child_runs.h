@@ -20,8 +20,13 @@ struct ChildResult {
   double seconds = 0;
 };
 
-// Runs every child, at most `jobs` at a time in the order given, each with OMP_NUM_THREADS =
-// `threads`; `on_start` and `on_done` are called with the run's index as each starts and ends.
+// The threads each child starts with: `threads` shared among min(jobs, runs) children, at least 1.
+int initial_threads(int jobs, std::size_t runs, int threads);
+
+// Runs every child, at most `jobs` at a time in the order given, each started with
+// OMP_NUM_THREADS = initial_threads(jobs, runs.size(), threads); once every child has started,
+// those still running share all `threads` (handed over between their steps, thread_handover.h).
+// `on_start` and `on_done` are called with the run's index as each starts and ends.
 // A child that cannot be started (its log not writable, no fork, no exec) ends with exit status
 // 127. The children get SIGTERM if this process dies first.
 std::vector<ChildResult> run_children(const std::vector<ChildRun>& runs, int jobs, int threads,

@@ -121,7 +121,7 @@ void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path
     which.push_back(k);
   }
   if (runs.empty()) return;
-  const int threads = std::max(1, omp_get_max_threads() / jobs);
+  const int threads = initial_threads(jobs, runs.size(), omp_get_max_threads());
   if (!quiet) {
     std::printf("running %zu cases, %d at a time with %d thread%s each; logs in %s/<case>.log\n", runs.size(), jobs,
                 threads, threads == 1 ? "" : "s", out.c_str());
@@ -142,7 +142,7 @@ void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path
     }
     std::fflush(stdout);
   };
-  run_children(runs, jobs, threads, started, done);
+  run_children(runs, jobs, omp_get_max_threads(), started, done);
 }
 
 void print_help() {
@@ -159,7 +159,8 @@ void print_help() {
       "  runs made separately with rbcflow run CASE.toml --out DIR/<case name> (or moved there).\n"
       "  --jobs J runs J cases at a time, each as its own rbcflow run process with its share of the\n"
       "  threads (OMP_NUM_THREADS / J) and its output in DIR/<case name>.log: faster than one case\n"
-      "  after another when a case leaves cores idle (list the longest cases first).\n"
+      "  after another when a case leaves cores idle (list the longest cases first). Once the last\n"
+      "  case has started, the runs still going take over the threads of those that finished.\n"
       "  A run that fails (blow-up) is reported and left out; the others are still collected,\n"
       "  and the exit status is then 1.\n");
 }

@@ -1,5 +1,6 @@
 #include "run_loop.h"
 
+#include <omp.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -17,6 +18,7 @@
 #include "libsolver/wall/tube_flow.h"
 #include "run_output.h"
 #include "run_setup.h"
+#include "thread_handover.h"
 
 namespace rbcflow::cli {
 namespace {
@@ -181,6 +183,10 @@ void run_case(const RunRequest& request) {
   try {
     while (stepper.steps() < last) {
       const long n = stepper.steps();
+      if (const int threads = threads_handed_over(); threads > 0 && threads != omp_get_max_threads()) {
+        omp_set_num_threads(threads);
+        if (!quiet) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
+      }
       const auto t0 = Clock::now();
       const FlowSolution s = stepper.solve();
       const bool resumed_here = resume && n == *resume;  // the run before the restart wrote step n
