@@ -54,6 +54,17 @@ void BM_BuildSelfCorrection(benchmark::State& state) {
 }
 BENCHMARK(BM_BuildSelfCorrection)->Arg(12)->Arg(16)->Arg(24)->Arg(32)->Unit(benchmark::kMillisecond);
 
+// Both layers with their Ewald splits, as a step with viscosity ratio != 1 builds them.
+void BM_BuildSelfSingleAndDouble(benchmark::State& state) {
+  const auto cell = red_cell(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    auto both = LayerCorrection::single_and_double(cell, 2.0, 1.5, cell->node_targets());
+    benchmark::DoNotOptimize(&both);
+  }
+  state.counters["targets"] = cell->nodes().size();
+}
+BENCHMARK(BM_BuildSelfSingleAndDouble)->Arg(12)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
+
 void BM_BuildNeighbourCorrection(benchmark::State& state) {
   const auto cell = red_cell(static_cast<int>(state.range(0)));
   const auto targets = neighbour_targets(*cell);

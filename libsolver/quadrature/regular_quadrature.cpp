@@ -21,7 +21,7 @@ Eigen::MatrixXd regular_layer_sum(const SourceNodes& sources, const Eigen::Matri
       if (p == skip) continue;
       const Eigen::Vector3d r = Eigen::Vector3d(sources.x.row(p)) - x0;
       const Eigen::Vector3d m = sources.weight[p] * Eigen::Vector3d(sources.normal.row(p));
-      const double w = kernel.layer == Layer::single ? sources.weight[p] : 1.0;
+      const double w = kernel.layer() == Layer::single ? sources.weight[p] : 1.0;
       sum += w * (kernel.matrix(r, m) * Eigen::Vector3d(density.row(p)));
     }
     out.row(t) = sum;

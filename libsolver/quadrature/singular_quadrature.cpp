@@ -200,7 +200,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       cell.geometry_at(table[q], xq, jn, shift);
       const Eigen::Vector3d r = xq - x0;
       for (LayerCorrection* c : corrections) {
-        const bool single = c->kernel_.layer == Layer::single;
+        const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * weight[q]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, jn * weight[q]));
         c->patch_k_[t].push_back(pack(k));
@@ -219,7 +219,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
       for (LayerCorrection* c : corrections) {
-        const bool single = c->kernel_.layer == Layer::single;
+        const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));
         c->nodes_[t].push_back({p, pack(k)});
