@@ -122,9 +122,10 @@ void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path
   }
   if (runs.empty()) return;
   const int threads = initial_threads(jobs, runs.size(), omp_get_max_threads());
+  const int at_once = static_cast<int>(std::min<std::size_t>(jobs, runs.size()));
   if (!quiet) {
-    std::printf("running %zu cases, %d at a time with %d thread%s each; logs in %s/<case>.log\n", runs.size(), jobs,
-                threads, threads == 1 ? "" : "s", out.c_str());
+    std::printf("running %zu case%s, %d at a time with %d thread%s each; logs in %s/<case>.log\n", runs.size(),
+                runs.size() == 1 ? "" : "s", at_once, threads, threads == 1 ? "" : "s", out.c_str());
   }
   std::fflush(stdout);
   const auto started = [&](std::size_t i) {
