@@ -173,6 +173,11 @@ void run_case(const RunRequest& request) {
   }
 
   prepare_output_dir(c.output.dir);
+  if (resume) {
+    if (const auto run = carry_tables_from_checkpoint_run(request.restart, c.output.dir); run && !quiet) {
+      std::printf("restart: diagnostics and cell rows up to step %ld carried over from %s\n", *resume, run->c_str());
+    }
+  }
   write_case_toml(c, c.output.dir / "case.toml");
   RunOutput output(c, resume);
   Progress progress(quiet, first, last);

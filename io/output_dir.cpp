@@ -4,6 +4,8 @@
 
 #include <system_error>
 
+#include "io/atomic_file.h"
+
 namespace rbcflow {
 
 namespace fs = std::filesystem;
@@ -30,6 +32,24 @@ void prepare_output_dir(const fs::path& dir) {
                                (ec ? ": " + ec.message() : std::string()));
     }
   }
+}
+
+std::optional<fs::path> carry_tables_from_checkpoint_run(const fs::path& checkpoint, const fs::path& dir) {
+  const fs::path folder = checkpoint.parent_path();
+  if (folder.filename() != "checkpoints") return std::nullopt;
+  const fs::path run = folder.parent_path().empty() ? fs::path(".") : folder.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(run, ec) || fs::equivalent(run, dir, ec) || ec) return std::nullopt;
+  bool copied = false;
+  for (const char* table : {"diagnostics.csv", "cells.csv"}) {
+    const fs::path from = run / table, to = dir / table;
+    if (!fs::is_regular_file(from, ec) || fs::exists(to, ec)) continue;
+    write_atomically(to, [&](const fs::path& tmp) {
+      fs::copy_file(from, tmp, fs::copy_options::overwrite_existing);
+    });
+    copied = true;
+  }
+  return copied ? std::optional<fs::path>(run) : std::nullopt;
 }
 
 }  // namespace rbcflow

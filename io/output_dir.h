@@ -1,6 +1,7 @@
 #pragma once
 // The output directory of a run (CASE_FORMAT.md "Output directory").
 #include <filesystem>
+#include <optional>
 
 #include "io/case.h"
 
@@ -14,5 +15,14 @@ void check_output_dir(const Case& c, const std::filesystem::path& dir);
 // Creates `dir` and its vtk/, renders/ and checkpoints/ folders; throws std::runtime_error
 // naming the folder that cannot be created.
 void prepare_output_dir(const std::filesystem::path& dir);
+
+// A restart into another directory than that of the run which wrote the checkpoint
+// (RUN/checkpoints/step_N.h5): copies RUN's diagnostics.csv and cells.csv into `dir` where `dir`
+// has none, so that the restarted run's tables begin at step 1 as after a restart in place (the
+// rows after the checkpoint's step are dropped when the run opens them). RUN is left untouched.
+// Returns RUN when something was copied; nothing when the checkpoint is not in a run's
+// checkpoints/ folder, RUN is `dir`, or `dir` already has both tables.
+std::optional<std::filesystem::path> carry_tables_from_checkpoint_run(const std::filesystem::path& checkpoint,
+                                                                      const std::filesystem::path& dir);
 
 }  // namespace rbcflow

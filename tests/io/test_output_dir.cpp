@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
+#include <string>
 
 using namespace rbcflow;
 namespace fs = std::filesystem;
@@ -40,5 +42,41 @@ TEST(OutputDir, AFileInTheWayIsACaseErrorNamingTheKey) {
   }
   EXPECT_THROW(check_output_dir(kCase, base / "file" / "out"), CaseError);
   EXPECT_THROW(prepare_output_dir(base / "file" / "out"), std::runtime_error);
+  fs::remove_all(base);
+}
+
+// A restart into a new directory starts its tables with the rows of the run that wrote the
+// checkpoint; a restart in place, a checkpoint outside a run's checkpoints/ folder, or a
+// directory with tables of its own take nothing, and the old run is left as it was.
+TEST(OutputDir, ARestartElsewhereCarriesTheTablesOfTheCheckpointsRun) {
+  const fs::path base = fs::temp_directory_path() / "rbcflow_test_carry_tables";
+  fs::remove_all(base);
+  prepare_output_dir(base / "run");
+  std::ofstream(base / "run" / "checkpoints" / "step_00000002.h5") << "h5";
+  std::ofstream(base / "run" / "diagnostics.csv") << "step,time\n1,0.1\n2,0.2\n3,0.3\n";
+  std::ofstream(base / "run" / "cells.csv") << "step,cell\n1,0\n";
+  const fs::path checkpoint = base / "run" / "checkpoints" / "step_00000002.h5";
+  const auto text = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+
+  prepare_output_dir(base / "new");
+  const auto run = carry_tables_from_checkpoint_run(checkpoint, base / "new");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_TRUE(fs::equivalent(*run, base / "run"));
+  EXPECT_EQ(text(base / "new" / "diagnostics.csv"), "step,time\n1,0.1\n2,0.2\n3,0.3\n");
+  EXPECT_EQ(text(base / "new" / "cells.csv"), "step,cell\n1,0\n");
+
+  std::ofstream(base / "new" / "diagnostics.csv") << "step,time\n1,0.1\n2,0.2\n";
+  EXPECT_FALSE(carry_tables_from_checkpoint_run(checkpoint, base / "new").has_value());
+  EXPECT_EQ(text(base / "new" / "diagnostics.csv"), "step,time\n1,0.1\n2,0.2\n");
+
+  EXPECT_FALSE(carry_tables_from_checkpoint_run(checkpoint, base / "run").has_value());
+  fs::copy_file(checkpoint, base / "loose.h5");
+  prepare_output_dir(base / "other");
+  EXPECT_FALSE(carry_tables_from_checkpoint_run(base / "loose.h5", base / "other").has_value());
+  EXPECT_FALSE(fs::exists(base / "other" / "diagnostics.csv"));
+  EXPECT_EQ(text(base / "run" / "diagnostics.csv"), "step,time\n1,0.1\n2,0.2\n3,0.3\n");
   fs::remove_all(base);
 }
