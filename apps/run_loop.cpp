@@ -213,14 +213,14 @@ void run_case(const RunRequest& request) {
       }
       progress.update(stepper.steps(), stepper.time(), seconds);
     }
-    // The final state: its frame, render and checkpoint when not already written.
+    // The final state: its frame and render (the loop wrote the states before it; a restart
+    // that took no step is at the state the earlier run wrote), and its checkpoint when not
+    // already written.
     const long n = stepper.steps();
-    const bool frame_due = n % every != 0 || n == first;
-    const bool render_due = render && (render_every == 0 || n % render_every != 0 || n == first);
-    if (frame_due || render_due) {
+    if (!(resume && n == *resume)) {
       const FlowSolution s = stepper.solve();
-      if (frame_due) output.frame(stepper, s);
-      if (render_due) output.render(stepper, s);
+      output.frame(stepper, s);
+      if (render) output.render(stepper, s);
     }
     if (checkpoint_every > 0 && n % checkpoint_every != 0) {
       last_checkpoint = checkpoint_path(c.output.dir, n);
