@@ -130,6 +130,14 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     if (p > 0) z -= recycled->U * (B.leftCols(k) * y);
     x += M_inv(z);
     if (recycled && recycled->growing && !breakdown) recycled->grow(V, Hbar, B, k);
+    // |g_k| is the norm of b - A x for the new x (the Arnoldi relation; with a recycled space,
+    // A M^{-1} (V_k - U B) = V_{k+1} Hbar), so a converged cycle ends without the product that
+    // would recompute it: one operator application fewer per solve.
+    if (std::abs(g[k]) <= tolerance * b_norm) {
+      report.relative_residual = std::abs(g[k]) / b_norm;
+      report.converged = true;
+      return report;
+    }
   }
 }
 

@@ -118,6 +118,36 @@ TEST(PlainGmres, SolvesANonsymmetricSystemWithRestarts) {
   EXPECT_LT((x - M.lu().solve(b)).norm() / x.norm(), 1e-8);
 }
 
+// A converged solve applies A once for the initial residual and once per iteration: the
+// residual it reports is the Arnoldi one, which is the true one (checked here to 1e-12 of |b|).
+TEST(PlainGmres, EndsWithoutRecomputingTheResidual) {
+  const int n = 120;
+  std::mt19937 gen(3);
+  std::normal_distribution<double> nd;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) M(i, j) += 0.3 * nd(gen) / std::sqrt(double(n));
+  }
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = nd(gen);
+  for (const int restart : {60, 7}) {
+    int products = 0;
+    Eigen::VectorXd x;
+    const GmresReport r = gmres(
+        [&](const Eigen::VectorXd& v) {
+          ++products;
+          return Eigen::VectorXd(M * v);
+        },
+        b, x, 1e-8, 500, restart);
+    ASSERT_TRUE(r.converged);
+    const int cycles = (r.iterations + restart - 1) / restart;  // each starts from b - A x
+    EXPECT_EQ(products, r.iterations + cycles) << "restart " << restart;
+    const double true_residual = (b - M * x).norm() / b.norm();
+    EXPECT_LE(true_residual, 1e-8);
+    EXPECT_NEAR(r.relative_residual, true_residual, 1e-12);
+  }
+}
+
 TEST(PlainGmres, ReportsNonConvergence) {
   const int n = 50;
   Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, 1e-6, 1.0);
