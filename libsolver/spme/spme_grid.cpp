@@ -5,6 +5,7 @@
 #include <complex>
 #include <mutex>
 #include <numbers>
+#include <stdexcept>
 
 #include "bspline.h"
 #include "geometry/fftw_util.h"
@@ -29,8 +30,7 @@ fftw_plan plan_many(const std::array<int, 3>& n, int components, bool forward, u
                                        1, spectrum.data(), complex_dims, components, 1, flags)
               : fftw_plan_many_dft_c2r(3, real_dims, components, spectrum.data(), complex_dims,
                                        components, 1, real.data(), real_dims, components, 1, flags);
-  if (!p) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
-  return p;
+  return p;  // nullptr if FFTW cannot plan it
 }
 
 }  // namespace
@@ -70,20 +70,27 @@ SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, Ff
     }
   }
 
-  const unsigned flags = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  static const bool threads_ready = fftw_init_threads() != 0;
-  if (threads_ready) fftw_plan_with_nthreads(omp_get_max_threads());
-  forward3_ = plan_many(K, 3, true, flags);
-  forward6_ = plan_many(K, 6, true, flags);
-  backward3_ = plan_many(K, 3, false, flags);
-  if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
+  flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  threads_ = omp_get_max_threads();
 }
 
 SpmeGrid::~SpmeGrid() {
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (fftw_plan p : {forward3_, forward6_, backward3_})
-    if (p) fftw_destroy_plan(p);
+  for (const LazyPlan* p : {&forward3_, &forward6_, &backward3_})
+    if (p->plan) fftw_destroy_plan(p->plan);
+}
+
+fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward) const {
+  std::call_once(p.made, [&] {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    static const bool threads_ready = fftw_init_threads() != 0;
+    if (threads_ready) fftw_plan_with_nthreads(threads_);
+    const fftw_plan made = plan_many(parameters_.grid, components, forward, flags_);
+    if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
+    if (!made) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
+    p.plan = made;
+  });
+  return p.plan;
 }
 
 std::size_t SpmeGrid::real_points() const {
@@ -95,11 +102,11 @@ std::size_t SpmeGrid::complex_points() const {
 }
 
 void SpmeGrid::forward(int components, double* real, fftw_complex* spectrum) const {
-  fftw_execute_dft_r2c(components == 3 ? forward3_ : forward6_, real, spectrum);
+  fftw_execute_dft_r2c(components == 3 ? plan(forward3_, 3, true) : plan(forward6_, 6, true), real, spectrum);
 }
 
 void SpmeGrid::backward(fftw_complex* spectrum, double* real) const {
-  fftw_execute_dft_c2r(backward3_, spectrum, real);
+  fftw_execute_dft_c2r(plan(backward3_, 3, false), spectrum, real);
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {

@@ -10,10 +10,12 @@
 // with k = 0 removed and the Nyquist planes (m_d = K_d/2) dropped.
 //
 // Immutable after construction: one grid may serve several SpmePlans and threads. The FFTs
-// run with the OpenMP thread count current at construction.
+// run with the OpenMP thread count current at construction. Each FFTW plan is made on its
+// first use (a Stokeslet grid never plans the 6-component transform), thread-safely.
 #include <fftw3.h>
 
 #include <cstddef>
+#include <mutex>
 #include <vector>
 
 #include "ewald_parameters.h"
@@ -21,7 +23,10 @@
 
 namespace rbcflow {
 
-enum class FftPlanning { estimate, measure };  // FFTW_ESTIMATE (fast to build) or FFTW_MEASURE
+// FFTW_ESTIMATE: planned at once, the same plan in every run. FFTW_MEASURE: planned by timing
+// candidates (seconds for a 10^6-point grid), 1.1-1.6x faster transforms (docs/performance.md),
+// a plan that may differ from run to run and with it the last bits of the results.
+enum class FftPlanning { estimate, measure };
 
 class SpmeGrid {
  public:
@@ -36,6 +41,7 @@ class SpmeGrid {
   const EwaldParameters& parameters() const { return parameters_; }
   int size(int d) const { return parameters_.grid[d]; }
   int order() const { return parameters_.order; }
+  FftPlanning planning() const { return flags_ == FFTW_MEASURE ? FftPlanning::measure : FftPlanning::estimate; }
   std::size_t real_points() const;     // K1 K2 K3
   std::size_t complex_points() const;  // K1 K2 (K3/2 + 1)
 
@@ -56,7 +62,15 @@ class SpmeGrid {
   EwaldParameters parameters_;
   std::vector<double> influence_;      // 8 pi H(k)/(k^2 V |B|^2) per complex grid point
   std::vector<double> wavenumber_[3];  // k_d of index m_d (signed; 0 on the Nyquist plane)
-  fftw_plan forward3_ = nullptr, forward6_ = nullptr, backward3_ = nullptr;
+  struct LazyPlan {
+    std::once_flag made;
+    fftw_plan plan = nullptr;
+  };
+  fftw_plan plan(LazyPlan& p, int components, bool forward) const;
+
+  unsigned flags_;
+  int threads_;
+  mutable LazyPlan forward3_, forward6_, backward3_;
 };
 
 }  // namespace rbcflow

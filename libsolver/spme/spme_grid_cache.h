@@ -2,7 +2,9 @@
 // Ewald parameters and SPME grids (FFTW plans, influence function) kept from one time step to
 // the next: the choice depends only on the kernel, the tolerance, the box and the point counts
 // (ewald_parameters.h), which stay the same for a whole run, so each grid of a run is chosen and
-// built once instead of at every step. A cached grid is the grid a fresh build would give.
+// built once instead of at every step. A cached grid is the grid a fresh build would give, with
+// FFTW_MEASURE plans from kMeasuredGridPoints up: their planning (seconds) is paid once per run
+// and every product of every step runs the faster transform.
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -12,10 +14,13 @@
 
 namespace rbcflow {
 
+// 64^3: below it a transform takes milliseconds and FFTW_ESTIMATE's plans lose little.
+inline constexpr std::size_t kMeasuredGridPoints = std::size_t{1} << 18;
+
 class SpmeGridCache {
  public:
   // The grid of choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets,
-  // real_space), with FFTW_ESTIMATE plans. Thread-safe.
+  // real_space). Thread-safe.
   std::shared_ptr<const SpmeGrid> grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box, long n_sources,
                                        long n_targets = -1, const RealSpaceUse& real_space = {});
 
@@ -32,7 +37,7 @@ class SpmeGridCache {
   std::vector<Entry> entries_;
 };
 
-// From `cache`, or built afresh when it is null.
+// From `cache`, or built afresh (FFTW_ESTIMATE) when it is null.
 std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
                                            const PeriodicBox& box, long n_sources, long n_targets = -1,
                                            const RealSpaceUse& real_space = {});
