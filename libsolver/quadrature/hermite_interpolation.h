@@ -53,16 +53,21 @@ class HermiteInterpolator {
     while (j >= np) j -= np;
     const int j1 = j + 1 == np ? 0 : j + 1;
     const int nodes[4] = {s.i * np + j, s.i * np + j1, (s.i + 1) * np + j, (s.i + 1) * np + j1};
-    double sum[K] = {};
+    // The 4 data types of a corner are one 4-wide packet: weight (theta_w[2a + d_theta] *
+    // phi_w[2b + d_phi]) times data, summed over the corners, then across the packet.
+    using Packet = Eigen::Array4d;
+    const Packet theta[2] = {{s.theta_w[0], s.theta_w[1], s.theta_w[0], s.theta_w[1]},
+                             {s.theta_w[2], s.theta_w[3], s.theta_w[2], s.theta_w[3]}};
+    const Packet phi[2] = {{s.phi_w[0], s.phi_w[0], s.phi_w[1], s.phi_w[1]},
+                           {s.phi_w[2], s.phi_w[2], s.phi_w[3], s.phi_w[3]}};
+    Packet sum[K];
+    for (int c = 0; c < K; ++c) sum[c].setZero();
     for (int corner = 0; corner < 4; ++corner) {
       const double* row = data.data() + static_cast<std::size_t>(nodes[corner]) * (4 * K);
-      const double* wt = &s.theta_w[2 * (corner / 2)];
-      const double* wp = &s.phi_w[2 * (corner % 2)];
-      const double w[4] = {wt[0] * wp[0], wt[1] * wp[0], wt[0] * wp[1], wt[1] * wp[1]};
-      for (int c = 0; c < K; ++c)
-        sum[c] += w[0] * row[4 * c] + w[1] * row[4 * c + 1] + w[2] * row[4 * c + 2] + w[3] * row[4 * c + 3];
+      const Packet w = theta[corner / 2] * phi[corner % 2];
+      for (int c = 0; c < K; ++c) sum[c] += w * Eigen::Map<const Packet>(row + 4 * c);
     }
-    for (int c = 0; c < K; ++c) out[c] = sum[c];
+    for (int c = 0; c < K; ++c) out[c] = sum[c].sum();
   }
 
  private:
