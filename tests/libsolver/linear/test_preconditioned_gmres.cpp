@@ -100,17 +100,30 @@ TEST(PreconditionedGmres, AnEmptySpaceChangesNothing) {
   EXPECT_EQ((a - b).norm(), 0.0);
 }
 
+namespace {
+
+// M = I + 0.3 R / sqrt(n), R standard normal (eigenvalues in a disc of radius ~0.3 about 1),
+// and a standard normal b.
+struct NearIdentitySystem {
+  Eigen::MatrixXd M;
+  Eigen::VectorXd b;
+};
+NearIdentitySystem near_identity_system(int n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> nd;
+  NearIdentitySystem s{Eigen::MatrixXd::Identity(n, n), Eigen::VectorXd(n)};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) s.M(i, j) += 0.3 * nd(gen) / std::sqrt(double(n));
+  }
+  for (int i = 0; i < n; ++i) s.b[i] = nd(gen);
+  return s;
+}
+
+}  // namespace
+
 // Without a preconditioner (the cells' solve (10)).
 TEST(PlainGmres, SolvesANonsymmetricSystemWithRestarts) {
-  const int n = 120;
-  std::mt19937 gen(1);
-  std::normal_distribution<double> nd;
-  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) M(i, j) += 0.3 * nd(gen) / std::sqrt(double(n));
-  }
-  Eigen::VectorXd b(n);
-  for (int i = 0; i < n; ++i) b[i] = nd(gen);
+  const auto [M, b] = near_identity_system(120, 1);
   Eigen::VectorXd x;
   const GmresReport r = gmres([&](const Eigen::VectorXd& v) { return Eigen::VectorXd(M * v); }, b, x, 1e-10, 500, 20);
   EXPECT_TRUE(r.converged);
@@ -121,15 +134,7 @@ TEST(PlainGmres, SolvesANonsymmetricSystemWithRestarts) {
 // A converged solve applies A once for the initial residual and once per iteration: the
 // residual it reports is the Arnoldi one, which is the true one (checked here to 1e-12 of |b|).
 TEST(PlainGmres, EndsWithoutRecomputingTheResidual) {
-  const int n = 120;
-  std::mt19937 gen(3);
-  std::normal_distribution<double> nd;
-  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) M(i, j) += 0.3 * nd(gen) / std::sqrt(double(n));
-  }
-  Eigen::VectorXd b(n);
-  for (int i = 0; i < n; ++i) b[i] = nd(gen);
+  const auto [M, b] = near_identity_system(120, 3);
   for (const int restart : {60, 7}) {
     int products = 0;
     Eigen::VectorXd x;
