@@ -49,9 +49,10 @@ class WallCoupling {
   PeriodicBox box_;
   double ewald_tolerance_;
   WallSolveOptions options_;
+  // The SPME grids of the wall's operators (its own and operator_at's), kept for the run.
+  std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();
   WallSolver solver_;
   std::optional<std::array<PointField, 3>> unit_forces_;
-  std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // operator_at's
 };
 
 }  // namespace rbcflow
