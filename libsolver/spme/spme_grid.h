@@ -24,7 +24,7 @@
 namespace rbcflow {
 
 // FFTW_ESTIMATE: planned in microseconds, the same plan in every run. FFTW_MEASURE: planned by timing
-// candidates (seconds for a 10^6-point grid), 1.1-1.6x faster transforms (docs/performance.md),
+// candidates (seconds for a 10^6-point grid), 1.2-1.9x faster transforms (docs/performance.md),
 // a plan that may differ from run to run and with it the last bits of the results.
 enum class FftPlanning { estimate, measure };
 
