@@ -20,18 +20,20 @@ std::vector<double>* EwaldPlan::kept(std::vector<double>& coefficients) const {
 }
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
-                     const PointField& targets)
+                     const PointField& targets, PairShares shares)
     : neighbors_(grid->box(), grid->parameters().cutoff, sources, targets),
-      smooth_(std::move(grid), sources, targets) {}
+      smooth_(std::move(grid), sources, targets),
+      shares_(std::move(shares)) {}
 
-EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points)
+EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points, PairShares shares)
     : neighbors_(grid->box(), grid->parameters().cutoff, points, points),
-      smooth_(std::move(grid), points) {}
+      smooth_(std::move(grid), points),
+      shares_(std::move(shares)) {}
 
 PointField EwaldPlan::single_layer(const PointField& forces) {
   PointField u = smooth_.single_layer(forces);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_single_layer(neighbors_, xi(), forces, kept(single_coefficients_));
+  u += real_space_single_layer(neighbors_, xi(), forces, kept(single_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
@@ -47,7 +49,7 @@ PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   PointField u = smooth_.double_layer(q, normals);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_double_layer(neighbors_, xi(), q, normals, kept(double_coefficients_));
+  u += real_space_double_layer(neighbors_, xi(), q, normals, kept(double_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;

@@ -30,6 +30,7 @@
 
 #include "neighbor_list.h"
 #include "periodic_box.h"
+#include "real_space_sum.h"
 #include "spme_grid.h"
 #include "spme_plan.h"
 
@@ -48,10 +49,11 @@ struct EwaldTimings {
 
 class EwaldPlan {
  public:
+  // `shares`: real-space pairs weighted 1 - share in both layers (real_space_sum.h).
   EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
-            const PointField& targets);
+            const PointField& targets, PairShares shares = {});
   // Targets are the sources.
-  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points);
+  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points, PairShares shares = {});
 
   PointField single_layer(const PointField& forces);
   PointField double_layer(const PointField& q, const PointField& normals);
@@ -70,6 +72,7 @@ class EwaldPlan {
 
   NeighborList neighbors_;
   SpmePlan smooth_;
+  PairShares shares_;
   std::vector<double> single_coefficients_, double_coefficients_;
   EwaldTimings timings_;
 };

@@ -1,5 +1,6 @@
 #include "real_space_sum.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,76 +40,147 @@ bool prepare(const NeighborList& pairs, std::vector<double>* coefficients) {
   return fill;
 }
 
+// PairShares in the neighbour list's sorted source order: a thread scatters the shares of its
+// current target into a work array (one number per source) so that each pair finds its own.
+class ShareLookup {
+ public:
+  ShareLookup(const NeighborList& pairs, const PairShares* shares)
+      : shares_(shares && !shares->offsets.empty() ? shares : nullptr) {
+    if (!shares_) return;
+    const auto n_entries = static_cast<std::int64_t>(shares_->sources.size());
+    if (shares_->offsets.size() != static_cast<std::size_t>(pairs.n_targets()) + 1 || shares_->offsets.front() != 0 ||
+        shares_->offsets.back() != n_entries || shares_->shares.size() != shares_->sources.size())
+      throw std::invalid_argument("real-space Ewald sum: the pair shares do not fit the " +
+                                  std::to_string(pairs.n_targets()) + " targets");
+    rank_.resize(pairs.n_sources());
+    for (int i = 0; i < pairs.n_sources(); ++i) rank_[pairs.order()[i]] = i;
+    for (int s : shares_->sources)
+      if (s < 0 || s >= pairs.n_sources())
+        throw std::invalid_argument("real-space Ewald sum: a pair share names source " + std::to_string(s) + " of " +
+                                    std::to_string(pairs.n_sources()));
+    const double half_side = 0.5 * pairs.box().lengths().minCoeff();
+    nearest_image2_ = half_side * half_side;
+  }
+
+  // A work array for one thread (empty without shares).
+  std::vector<double> work(const NeighborList& pairs) const {
+    return std::vector<double>(shares_ ? pairs.n_sources() : 0, 0.0);
+  }
+  // Adds target t's shares to `work`; false when it has none.
+  bool scatter(int t, std::vector<double>& work) const {
+    if (!shares_ || shares_->offsets[t] == shares_->offsets[t + 1]) return false;
+    for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i)
+      work[rank_[shares_->sources[i]]] += shares_->shares[i];
+    return true;
+  }
+  void clear(int t, std::vector<double>& work) const {
+    for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i) work[rank_[shares_->sources[i]]] = 0.0;
+  }
+  // The weight of sorted source s at squared distance r2 (its other images keep weight 1).
+  double weight(int s, double r2, const std::vector<double>& work) const {
+    return r2 < nearest_image2_ ? 1.0 - work[s] : 1.0;
+  }
+
+ private:
+  const PairShares* shares_;
+  std::vector<int> rank_;  // caller's source index -> sorted
+  double nearest_image2_ = 0.0;
+};
+
 }  // namespace
 
+double pair_share_radius(const PeriodicBox& box, double cutoff) {
+  return (1.0 - 1e-9) * std::min(cutoff, 0.5 * box.lengths().minCoeff());
+}
+
 PointField real_space_single_layer(const NeighborList& pairs, double xi, const PointField& forces,
-                                   std::vector<double>* coefficients) {
+                                   std::vector<double>* coefficients, const PairShares* shares) {
   check_rows(forces, pairs.n_sources(), "the force field");
   const std::vector<double> f = sorted_densities(pairs, {&forces});
   const EwaldRealKernel kernel(xi);
   const bool fill = prepare(pairs, coefficients);
   double* c = coefficients ? coefficients->data() : nullptr;
+  const bool compute = !c || fill;
+  const ShareLookup lookup(pairs, compute ? shares : nullptr);
   PointField u(pairs.n_targets(), 3);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (int k = 0; k < pairs.n_targets(); ++k) {
-    const int t = pairs.target_order()[k];
-    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-    pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
-      const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
-      double a, b;  // S^R f = a f + b (r.f) r
-      if (c && !fill) {
-        a = c[2 * i];
-        b = c[2 * i + 1];
-      } else {
-        const double r2 = r.squaredNorm(), rn = std::sqrt(r2);
-        const StokesletSplitCoeffs k2 = kernel.stokeslet_coeffs(rn);
-        a = k2.a;
-        b = k2.b / r2;
-        if (c) {
-          c[2 * i] = a;
-          c[2 * i + 1] = b;
+#pragma omp parallel
+  {
+    std::vector<double> work = lookup.work(pairs);
+#pragma omp for schedule(dynamic, 64)
+    for (int k = 0; k < pairs.n_targets(); ++k) {
+      const int t = pairs.target_order()[k];
+      const bool weighted = lookup.scatter(t, work);
+      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
+        const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
+        double a, b;  // S^R f = a f + b (r.f) r
+        if (!compute) {
+          a = c[2 * i];
+          b = c[2 * i + 1];
+        } else {
+          const double r2 = r.squaredNorm(), rn = std::sqrt(r2);
+          const StokesletSplitCoeffs k2 = kernel.stokeslet_coeffs(rn);
+          const double w = weighted ? lookup.weight(s, r2, work) : 1.0;
+          a = w * k2.a;
+          b = w * k2.b / r2;
+          if (c) {
+            c[2 * i] = a;
+            c[2 * i + 1] = b;
+          }
         }
-      }
-      acc += a * fs + (b * r.dot(fs)) * r;
-    });
-    u.row(t) = acc.transpose();
+        acc += a * fs + (b * r.dot(fs)) * r;
+      });
+      if (weighted) lookup.clear(t, work);
+      u.row(t) = acc.transpose();
+    }
   }
   return u;
 }
 
 PointField real_space_double_layer(const NeighborList& pairs, double xi, const PointField& q,
-                                   const PointField& normals, std::vector<double>* coefficients) {
+                                   const PointField& normals, std::vector<double>* coefficients,
+                                   const PairShares* shares) {
   check_rows(q, pairs.n_sources(), "the double-layer density");
   check_rows(normals, pairs.n_sources(), "the normal field");
   const std::vector<double> qn = sorted_densities(pairs, {&q, &normals});
   const EwaldRealKernel kernel(xi);
   const bool fill = prepare(pairs, coefficients);
   double* c = coefficients ? coefficients->data() : nullptr;
+  const bool compute = !c || fill;
+  const ShareLookup lookup(pairs, compute ? shares : nullptr);
   PointField u(pairs.n_targets(), 3);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (int k = 0; k < pairs.n_targets(); ++k) {
-    const int t = pairs.target_order()[k];
-    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-    pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
-      const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
-      const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
-      double alpha, beta;
-      if (c && !fill) {
-        alpha = c[2 * i];
-        beta = c[2 * i + 1];
-      } else {
-        const StressletSplitCoeffs k2 = kernel.stresslet_coeffs(r.norm());
-        alpha = k2.alpha;
-        beta = k2.beta;
-        if (c) {
-          c[2 * i] = alpha;
-          c[2 * i + 1] = beta;
+#pragma omp parallel
+  {
+    std::vector<double> work = lookup.work(pairs);
+#pragma omp for schedule(dynamic, 64)
+    for (int k = 0; k < pairs.n_targets(); ++k) {
+      const int t = pairs.target_order()[k];
+      const bool weighted = lookup.scatter(t, work);
+      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
+        const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
+        const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
+        double alpha, beta;
+        if (!compute) {
+          alpha = c[2 * i];
+          beta = c[2 * i + 1];
+        } else {
+          const double r2 = r.squaredNorm();
+          const StressletSplitCoeffs k2 = kernel.stresslet_coeffs(std::sqrt(r2));
+          const double w = weighted ? lookup.weight(s, r2, work) : 1.0;
+          alpha = w * k2.alpha;
+          beta = w * k2.beta;
+          if (c) {
+            c[2 * i] = alpha;
+            c[2 * i + 1] = beta;
+          }
         }
-      }
-      const double rq = r.dot(qs), rn = r.dot(ns);
-      acc += (alpha * rq * rn + beta * qs.dot(ns)) * r + beta * (rn * qs + rq * ns);
-    });
-    u.row(t) = acc.transpose();
+        const double rq = r.dot(qs), rn = r.dot(ns);
+        acc += (alpha * rq * rn + beta * qs.dot(ns)) * r + beta * (rn * qs + rq * ns);
+      });
+      if (weighted) lookup.clear(t, work);
+      u.row(t) = acc.transpose();
+    }
   }
   return u;
 }

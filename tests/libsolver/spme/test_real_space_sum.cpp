@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/real_space_sum.h"
 #include "test_points.h"
@@ -52,6 +53,77 @@ TEST(RealSpaceSum, KeptCoefficientsGiveTheSameSums) {
     EXPECT_EQ(single.size(), 2 * static_cast<std::size_t>(pairs.n_pairs()));
     EXPECT_EQ(double_.size(), 2 * static_cast<std::size_t>(pairs.n_pairs()));
   }
+}
+
+// PairShares: a shared pair counts with weight 1 - share at its nearest image (other images in
+// the cutoff keep weight 1), the shares of a source named twice add, and kept coefficients
+// carry the weights to later products. Reference: the unweighted sum minus share times the
+// pair's term from the kernels of ewald_kernels.h at the nearest image.
+TEST(RealSpaceSum, SharedPairsCountWithWeightOneMinusShare) {
+  const Eigen::Vector3d L(1.0, 0.7, 1.2);
+  const PeriodicBox box(L);
+  const double xi = 4.0;
+  const PointField xs = random_points(120, L, 31), xt = random_points(50, L, 32);
+  for (double cutoff : {0.3, 0.85}) {  // below and above half the shortest side (0.35)
+    const NeighborList pairs(box, cutoff, xs, xt);
+    const double radius = pair_share_radius(box, cutoff);
+    PairShares shares;
+    shares.offsets.push_back(0);
+    std::vector<std::vector<std::pair<int, double>>> by_target(xt.rows());
+    for (int t = 0; t < xt.rows(); ++t) {
+      for (int s = t % 3; s < xs.rows(); s += 3) {
+        Eigen::Vector3d r = (xs.row(s) - xt.row(t)).transpose();
+        r -= (L.array() * (r.array() / L.array()).round()).matrix();
+        if (r.norm() >= radius) continue;
+        const double share = 0.1 + 0.8 * ((s * 7 + t) % 10) / 10.0;
+        by_target[t].push_back({s, share});
+        if (by_target[t].size() == 1) by_target[t].push_back({s, 0.05});  // named twice: 0.05 more
+      }
+      for (const auto& [s, share] : by_target[t]) {
+        shares.sources.push_back(s);
+        shares.shares.push_back(share);
+      }
+      shares.offsets.push_back(static_cast<std::int64_t>(shares.sources.size()));
+    }
+    ASSERT_GT(shares.sources.size(), 100u);
+    std::vector<double> single, double_;
+    for (unsigned seed : {41u, 42u}) {  // the first fills the kept coefficients, the second reads them
+      const PointField f = random_vectors(120, seed), q = random_vectors(120, seed + 10),
+                       n = random_unit_vectors(120, seed + 20);
+      PointField s_ref = real_space_single_layer(pairs, xi, f), d_ref = real_space_double_layer(pairs, xi, q, n);
+      for (int t = 0; t < xt.rows(); ++t) {
+        for (const auto& [s, share] : by_target[t]) {
+          Eigen::Vector3d r = (xs.row(s) - xt.row(t)).transpose();
+          r -= (L.array() * (r.array() / L.array()).round()).matrix();
+          s_ref.row(t) -= share * ewald_real_stokeslet_apply(r, xi, f.row(s).transpose()).transpose();
+          d_ref.row(t) -= share * ewald_real_stresslet_apply(r, xi, q.row(s).transpose(), n.row(s).transpose()).transpose();
+        }
+      }
+      for (std::vector<double>* kept : {static_cast<std::vector<double>*>(nullptr), &single}) {
+        const PointField s_shared = real_space_single_layer(pairs, xi, f, kept, &shares);
+        EXPECT_LT((s_shared - s_ref).norm(), 1e-12 * s_ref.norm()) << "cutoff " << cutoff << ", seed " << seed;
+      }
+      for (std::vector<double>* kept : {static_cast<std::vector<double>*>(nullptr), &double_}) {
+        const PointField d_shared = real_space_double_layer(pairs, xi, q, n, kept, &shares);
+        EXPECT_LT((d_shared - d_ref).norm(), 1e-12 * d_ref.norm()) << "cutoff " << cutoff << ", seed " << seed;
+      }
+    }
+  }
+}
+
+TEST(RealSpaceSum, RejectsSharesThatDoNotFit) {
+  const PeriodicBox box(Eigen::Vector3d::Ones());
+  const PointField x = random_points(10, Eigen::Vector3d::Ones(), 1);
+  const NeighborList pairs(box, 0.3, x, x);
+  PairShares wrong_targets{{0, 0, 0}, {}, {}};
+  EXPECT_THROW(real_space_single_layer(pairs, 5.0, random_vectors(10, 1), nullptr, &wrong_targets),
+               std::invalid_argument);
+  PairShares bad_source{std::vector<std::int64_t>(11, 0), {}, {}};
+  for (std::size_t t = 1; t < bad_source.offsets.size(); ++t) bad_source.offsets[t] = 1;
+  bad_source.sources = {10};
+  bad_source.shares = {0.5};
+  EXPECT_THROW(real_space_double_layer(pairs, 5.0, random_vectors(10, 1), random_vectors(10, 2), nullptr, &bad_source),
+               std::invalid_argument);
 }
 
 TEST(RealSpaceSum, RejectsMismatchedDensities) {
