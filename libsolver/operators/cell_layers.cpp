@@ -1,9 +1,12 @@
 #include "cell_layers.h"
 
+#include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <tuple>
 
 #include "libsolver/spme/double_layer_linear.h"
+#include "libsolver/spme/real_space_sum.h"
 #include "near_targets.h"
 #include "scoped_timer.h"
 
@@ -27,18 +30,22 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     nodes_.normal.middleRows(c * np, np) = cells_[c]->nodes().normal;
     nodes_.weight.segment(c * np, np) = cells_[c]->nodes().weight;
   }
+  // The Ewald grids first: the corrections need their xi, and leave the patch nodes within
+  // the real-space cutoff (their nearest images) to the real-space sums, which weight those
+  // pairs by 1 - eta (PairShares) instead of the corrections removing eta K w.
+  std::shared_ptr<const SpmeGrid> single_grid, double_grid;
   double xi_single = 0.0, xi_double = 0.0;
+  std::array<double, 2> fold_radius{0.0, 0.0};
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
-    single_plan_ = std::make_unique<EwaldPlan>(
-        ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np), nodes_.x);
-    xi_single = single_plan_->xi();
+    single_grid = ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np);
+    xi_single = single_grid->parameters().xi;
+    fold_radius[0] = pair_share_radius(box, single_grid->parameters().cutoff);
     if (with_double_layer) {
-      double_plan_ = std::make_unique<EwaldPlan>(
-          ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
-                     kDoubleLayerRealSpace),
-          nodes_.x);
-      xi_double = double_plan_->xi();
+      double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
+                               kDoubleLayerRealSpace);
+      xi_double = double_grid->parameters().xi;
+      fold_radius[1] = pair_share_radius(box, double_grid->parameters().cutoff);
     }
   }
   geometry_timer.stop();
@@ -51,9 +58,10 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     const auto targets = cells_[c]->node_targets();
     if (with_double_layer) {
       std::tie(self_single_[c], self_double_[c]) =
-          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets);
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets, fold_radius);
     } else {
-      self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets);
+      self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets,
+                                                          fold_radius[0]);
     }
   }
   self_timer.stop();
@@ -71,11 +79,47 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     if (near_targets.empty()) continue;
     if (with_double_layer) {
       std::tie(near_[c].single, near_[c].double_) =
-          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, near_targets);
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, near_targets, fold_radius);
     } else {
-      near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, near_targets);
+      near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single},
+                                                          near_targets, fold_radius[0]);
     }
   }
+  near_timer.stop();
+  if (domain_.box) {
+    ScopedTimer plans_timer(timings_.geometry);
+    single_plan_ = std::make_unique<EwaldPlan>(single_grid, nodes_.x, folded_shares(Layer::single));
+    if (with_double_layer) double_plan_ = std::make_unique<EwaldPlan>(double_grid, nodes_.x, folded_shares(Layer::double_));
+  }
+}
+
+PairShares CellLayers::folded_shares(Layer layer) const {
+  const int np = nodes_per_cell();
+  // Calls f(cell, target row, patch nodes) for every target of the layer's corrections.
+  auto for_each_target = [&](auto&& f) {
+    for (int c = 0; c < num_cells(); ++c) {
+      const LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
+      for (int t = 0; t < self.num_targets(); ++t) f(c, c * np + t, self.folded(t));
+      const NearCorrection& n = near_[c];
+      const LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
+      if (!near) continue;
+      for (int k = 0; k < near->num_targets(); ++k) f(c, n.rows[k], near->folded(k));
+    }
+  };
+  PairShares shares;
+  shares.offsets.assign(static_cast<std::size_t>(nodes_.size()) + 1, 0);
+  for_each_target([&](int, int row, const std::vector<PatchNode>& nodes) { shares.offsets[row + 1] += nodes.size(); });
+  for (std::size_t r = 1; r < shares.offsets.size(); ++r) shares.offsets[r] += shares.offsets[r - 1];
+  shares.sources.resize(shares.offsets.back());
+  shares.shares.resize(shares.offsets.back());
+  std::vector<std::int64_t> next(shares.offsets.begin(), shares.offsets.end() - 1);
+  for_each_target([&](int c, int row, const std::vector<PatchNode>& nodes) {
+    for (const PatchNode& e : nodes) {
+      shares.sources[next[row]] = c * np + e.node;
+      shares.shares[next[row]++] = e.eta;
+    }
+  });
+  return shares;
 }
 
 CellLayers::~CellLayers() = default;

@@ -6,7 +6,10 @@
 // Free space: direct regular sums; periodic: SPME + real-space sums (EwaldPlan). In both, the
 // singular self-interaction of each cell and the nearly-singular interaction of close cells
 // (and of parts of one cell close to each other, near_targets.h) come from the quadrature
-// corrections (libsolver/quadrature), built once in the constructor.
+// corrections (libsolver/quadrature), built once in the constructor. Periodic: the regular
+// rule's share of each patch (eta at the nodes within the real-space cutoff) comes out of the
+// real-space Ewald sums, which weight those pairs by 1 - eta (PairShares), not out of the
+// corrections.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
 #include <Eigen/Core>
 #include <memory>
@@ -72,6 +75,8 @@ class CellLayers {
     std::vector<int> rows;  // stacked target rows
   };
   Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density);
+  // The patch nodes the layer's corrections left to the real-space sum, by target row.
+  PairShares folded_shares(Layer layer) const;
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
 
   std::shared_ptr<const CellGrids> grids_;

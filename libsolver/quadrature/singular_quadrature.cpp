@@ -88,21 +88,23 @@ void CellQuadratureGeometry::geometry_at(const HermiteStencil& s, Eigen::Vector3
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                                 std::vector<QuadratureTarget> targets)
-    : LayerCorrection(std::move(cell), kernel, std::move(targets), Unbuilt{}) {
+                                 std::vector<QuadratureTarget> targets, double fold_radius)
+    : LayerCorrection(std::move(cell), kernel, std::move(targets), fold_radius, Unbuilt{}) {
   LayerCorrection* self = this;
   build({&self, 1});
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                                 std::vector<QuadratureTarget> targets, Unbuilt)
-    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)) {}
+                                 std::vector<QuadratureTarget> targets, double fold_radius, Unbuilt)
+    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)), fold_radius_(fold_radius) {}
 
 std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> LayerCorrection::single_and_double(
     const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
-    const std::vector<QuadratureTarget>& targets) {
-  std::unique_ptr<LayerCorrection> single(new LayerCorrection(cell, LayerKernel{Layer::single, xi_single}, targets, Unbuilt{}));
-  std::unique_ptr<LayerCorrection> double_(new LayerCorrection(cell, LayerKernel{Layer::double_, xi_double}, targets, Unbuilt{}));
+    const std::vector<QuadratureTarget>& targets, std::array<double, 2> fold_radius) {
+  std::unique_ptr<LayerCorrection> single(
+      new LayerCorrection(cell, LayerKernel{Layer::single, xi_single}, targets, fold_radius[0], Unbuilt{}));
+  std::unique_ptr<LayerCorrection> double_(
+      new LayerCorrection(cell, LayerKernel{Layer::double_, xi_double}, targets, fold_radius[1], Unbuilt{}));
   LayerCorrection* both[2] = {single.get(), double_.get()};
   build(both);
   return {std::move(single), std::move(double_)};
@@ -156,9 +158,24 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   const int n_tables = static_cast<int>(centres.size());
   stencils->tables.resize(n_tables);
   std::vector<std::vector<double>> weights(n_tables);
+  // Directions of the grid nodes on the parameter sphere: a node is in a patch when
+  // u_node . u_centre > cos(rho_1), which needs no trigonometry per (centre, node) pair.
+  Eigen::MatrixXd u(grid.size(), 3);
+  for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
+  // The regular rule's nodes inside each table's patch with their eta (shifted with the
+  // stencils for the node targets of a ring).
+  std::vector<std::vector<PatchNode>> patch_nodes(n_tables);
 #pragma omp parallel for schedule(dynamic, 4)
   for (int b = 0; b < n_tables; ++b) {
     const TableCentre& centre = centres[b];
+    const Eigen::Vector3d uc = unit_direction(centre.theta, centre.phi);
+    for (int p = 0; p < grid.size(); ++p) {
+      const Eigen::Vector3d up = u.row(p).transpose();
+      const double cos_rho = uc.dot(up);
+      if (cos_rho <= cos_rho1) continue;
+      const double rho = std::atan2(uc.cross(up).norm(), cos_rho);
+      if (rho < rho1) patch_nodes[b].push_back({p, patch_mask(rho, rho1)});
+    }
     double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
     if (centre.target >= 0 && targets[centre.target].distance > 0) {
       Eigen::Vector3d xc, jc;
@@ -175,12 +192,8 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     c->stencils_ = stencils;
     c->patch_k_.resize(n_targets);
     c->nodes_.resize(n_targets);
+    c->folded_.resize(n_targets);
   }
-
-  // Directions of the grid nodes on the parameter sphere: a node is in a target's patch when
-  // u_node . u_target > cos(rho_1), which needs no trigonometry per (target, node) pair.
-  Eigen::MatrixXd u(grid.size(), 3);
-  for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
 
 #pragma omp parallel for schedule(dynamic, 4)
   for (int t = 0; t < n_targets; ++t) {
@@ -206,19 +219,24 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         c->patch_k_[t].push_back(pack(k));
       }
     }
-    // The regular rule's share of the patch, eta K w at the nodes inside it, is removed.
-    const Eigen::Vector3d ut = unit_direction(target.theta, target.phi);
-    for (int p = 0; p < grid.size(); ++p) {
+    // The regular rule's share of the patch, eta K w at the nodes inside it, is removed here,
+    // or by the caller for the nodes within its fold radius.
+    const int node_shift = rings ? shift / cells_per_node : 0;
+    for (const PatchNode& centred : patch_nodes[stencils->table[t]]) {
+      const int i = centred.node / grid.n_phi();
+      int j = centred.node % grid.n_phi() + node_shift;
+      if (j >= grid.n_phi()) j -= grid.n_phi();
+      const int p = i * grid.n_phi() + j;
       if (p == target.self_node) continue;
-      const Eigen::Vector3d up = u.row(p).transpose();
-      const double cos_rho = ut.dot(up);
-      if (cos_rho <= cos_rho1) continue;
-      const double rho = std::atan2(ut.cross(up).norm(), cos_rho);
-      if (rho >= rho1) continue;
-      const double eta = patch_mask(rho, rho1);
+      const double eta = centred.eta;
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
+      const double distance = r.norm();
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
       for (LayerCorrection* c : corrections) {
+        if (distance < c->fold_radius_) {
+          c->folded_[t].push_back({p, eta});
+          continue;
+        }
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));

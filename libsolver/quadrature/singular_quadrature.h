@@ -14,6 +14,7 @@
 // matrices) is built once per time step; apply() is linear in the density and is what every
 // GMRES product calls.
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <span>
 #include <utility>
@@ -76,18 +77,31 @@ class CellQuadratureGeometry {
   double rho1_ = 0, h_ = 0, near_ = 0;
 };
 
+// A node of the regular rule inside a target's patch, with its partition-of-unity weight eta:
+// the share of that node's regular term which the patch integral I_1 replaces.
+struct PatchNode {
+  int node;
+  double eta;
+};
+
 class LayerCorrection {
  public:
+  // fold_radius: nodes of the patch closer than this to the target are left to the caller's
+  // regular sum, which weights them by 1 - eta itself (folded(); an Ewald real-space sum whose
+  // cutoff and nearest image reach them: spme/real_space_sum.h PairShares); the correction then
+  // neither builds nor applies their -eta K w. 0: the correction removes every node's share.
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                  std::vector<QuadratureTarget> targets);
+                  std::vector<QuadratureTarget> targets, double fold_radius = 0.0);
   // The single- and double-layer corrections of the same targets, built together: the patch
   // geometry (points, interpolated x and J n, the regular rule's nodes inside) is computed once.
   static std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> single_and_double(
       const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
-      const std::vector<QuadratureTarget>& targets);
+      const std::vector<QuadratureTarget>& targets, std::array<double, 2> fold_radius = {0.0, 0.0});
 
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
+  // The patch nodes of target t whose share the caller removes (see fold_radius).
+  const std::vector<PatchNode>& folded(int t) const { return folded_[t]; }
   // Correction at every target for the density given at the cell's nodes (nodes x 3); the
   // patch sees its expansion of order N (exact for the band-limited densities of the solver).
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density) const;
@@ -98,7 +112,7 @@ class LayerCorrection {
  private:
   struct Unbuilt {};
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                  std::vector<QuadratureTarget> targets, Unbuilt);
+                  std::vector<QuadratureTarget> targets, double fold_radius, Unbuilt);
   // Fills stencils_, patch_k_ and nodes_ of corrections that share their cell and targets.
   static void build(std::span<LayerCorrection* const> corrections);
 
@@ -118,9 +132,11 @@ class LayerCorrection {
   std::shared_ptr<const CellQuadratureGeometry> cell_;
   LayerKernel kernel_;
   std::vector<QuadratureTarget> targets_;
+  double fold_radius_;
   std::shared_ptr<const PatchStencils> stencils_;
   std::vector<std::vector<PackedKernel>> patch_k_;  // per target, in the order of its table
   std::vector<std::vector<NodeEntry>> nodes_;       // nodes in the patch: -eta K w
+  std::vector<std::vector<PatchNode>> folded_;      // nodes in the patch left to the caller
 };
 
 // Free-space layer potential of one cell at its own nodes: regular rule + corrections.

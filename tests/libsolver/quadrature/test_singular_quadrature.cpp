@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 #include "geometry/surface_projection.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/ewald_plan.h"
+#include "libsolver/spme/real_space_sum.h"
 #include "quadrature_test_support.h"
 
 using namespace rbcflow;
@@ -168,4 +170,96 @@ TEST(SingularQuadrature, SphereInPeriodicArrayMatchesHasimoto) {
     std::printf("  L = %4.1f: K = %.6f (reference %.5f), transverse %.1e\n", L, K, K_ref, mean.head<2>().norm());
     EXPECT_NEAR(K, K_ref, 1e-4);
   }
+}
+
+namespace {
+
+// Single and double layers of `cell` in `box` at its nodes and at `near` points (targets with
+// their projections), SPME + real-space sums + corrections (Ewald tolerance 1e-8). fold: the
+// corrections leave their patch nodes within the real-space cutoff to the real-space sums
+// (PairShares); `folded` counts those (target, node) entries.
+std::pair<Eigen::MatrixXd, Eigen::MatrixXd> periodic_layers(const std::shared_ptr<const CellQuadratureGeometry>& cell,
+                                                            const PeriodicBox& box,
+                                                            const std::vector<QuadratureTarget>& near, bool fold,
+                                                            std::size_t& folded) {
+  const SourceNodes& nodes = cell->nodes();
+  const int n = nodes.size(), k = static_cast<int>(near.size());
+  PointField targets(n + k, 3);
+  targets.topRows(n) = nodes.x;
+  for (int i = 0; i < k; ++i) targets.row(n + i) = near[i].x.transpose();
+  std::shared_ptr<const SpmeGrid> grid[2];
+  std::array<double, 2> radius{0.0, 0.0};
+  for (int l = 0; l < 2; ++l) {
+    const EwaldChoice c =
+        choose_ewald_parameters(l == 0 ? EwaldKernel::stokeslet : EwaldKernel::stresslet, 1e-8, box, n);
+    grid[l] = std::make_shared<const SpmeGrid>(box, c.parameters, FftPlanning::estimate);
+    if (fold) radius[l] = pair_share_radius(box, c.parameters.cutoff);
+  }
+  const double xi_s = grid[0]->parameters().xi, xi_d = grid[1]->parameters().xi;
+  auto self = LayerCorrection::single_and_double(cell, xi_s, xi_d, cell->node_targets(), radius);
+  auto close = LayerCorrection::single_and_double(cell, xi_s, xi_d, near, radius);
+  folded = 0;
+  auto shares = [&](const LayerCorrection& s, const LayerCorrection& c) {
+    PairShares p;
+    p.offsets.push_back(0);
+    for (int t = 0; t < n + k; ++t) {
+      for (const PatchNode& e : t < n ? s.folded(t) : c.folded(t - n)) {
+        p.sources.push_back(e.node);
+        p.shares.push_back(e.eta);
+      }
+      p.offsets.push_back(static_cast<std::int64_t>(p.sources.size()));
+    }
+    folded += p.sources.size();
+    return p;
+  };
+  EwaldPlan single(grid[0], nodes.x, targets, shares(*self.first, *close.first));
+  EwaldPlan dbl(grid[1], nodes.x, targets, shares(*self.second, *close.second));
+  const Eigen::MatrixXd f = nodes.normal, u = nodes.x;
+  Eigen::MatrixXd sl = single.single_layer(f.array().colwise() * nodes.weight.array());
+  Eigen::MatrixXd dl = dbl.double_layer(u.array().colwise() * nodes.weight.array(), nodes.normal);
+  sl.topRows(n) += self.first->apply(f);
+  sl.bottomRows(k) += close.first->apply(f);
+  dl.topRows(n) += self.second->apply(u);
+  dl.bottomRows(k) += close.second->apply(u);
+  return {sl, dl};
+}
+
+}  // namespace
+
+// The regular rule's share of each patch (eta K w at the nodes inside it) taken out of the
+// real-space Ewald sums (pairs weighted 1 - eta) instead of by the corrections: the same layers
+// up to the order of summation (1e-12 of their norm), at the nodes and at nearly-singular
+// targets 0.1 off the surface. In the box of side 1.6 across the cell, half the side (0.8)
+// leaves part of each patch beyond the nearest-image radius, in the corrections.
+TEST(LayerCorrection, FoldedPatchNodesGiveTheSameLayers) {
+  const int N = 12;
+  std::size_t folded_in[2] = {0, 0};
+  int b = 0;
+  for (const Eigen::Vector3d& side : {Eigen::Vector3d(6.0, 6.0, 6.0), Eigen::Vector3d(3.2, 3.2, 1.6)}) {
+    const PeriodicBox box(side);
+    SHSurface s = make_biconcave(N);
+    s.translate(0.5 * side);
+    auto cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), CellGrids::make(N, N));
+    std::vector<QuadratureTarget> near;
+    for (auto [t, p] : {std::pair{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}}) {
+      const Eigen::Vector3d xs = sh_evaluate(s.coeffs(), t, p).transpose();
+      const Eigen::Vector3d a1 = sh_evaluate(s.coeffs(), t, p, 1, 0).transpose();
+      const Eigen::Vector3d a2 = sh_evaluate(s.coeffs(), t, p, 0, 1).transpose();
+      const Eigen::Vector3d x0 = xs + 0.1 * a1.cross(a2).normalized();
+      const SurfaceProjection proj = project_onto_surface(s.coeffs(), x0, t, p);
+      ASSERT_TRUE(proj.converged);
+      near.push_back({x0, proj.theta, proj.phi, proj.distance, -1});
+    }
+    std::size_t none = 0;
+    const auto [sl, dl] = periodic_layers(cell, box, near, false, none);
+    const auto [sl_folded, dl_folded] = periodic_layers(cell, box, near, true, folded_in[b]);
+    EXPECT_EQ(none, 0u);
+    std::printf("  box %.1f x %.1f x %.1f: %zu folded patch nodes, differences %.1e (single), %.1e (double)\n", side.x(),
+                side.y(), side.z(), folded_in[b], (sl_folded - sl).norm() / sl.norm(), (dl_folded - dl).norm() / dl.norm());
+    EXPECT_LT((sl_folded - sl).norm(), 1e-12 * sl.norm());
+    EXPECT_LT((dl_folded - dl).norm(), 1e-12 * dl.norm());
+    ++b;
+  }
+  EXPECT_GT(folded_in[1], 0u);
+  EXPECT_LT(folded_in[1], folded_in[0]);  // the small box keeps part of the patches in the corrections
 }
