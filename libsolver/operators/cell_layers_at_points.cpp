@@ -51,14 +51,16 @@ int CellLayersAtPoints::near_points() const {
 }
 
 Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::MatrixXd& density) const {
-  const int np = layers_.nodes_per_cell();
+  const int nc = layers_.num_cells(), np = layers_.nodes_per_cell();
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(points_.rows(), 3);
-  for (int c = 0; c < layers_.num_cells(); ++c) {
+  std::vector<Eigen::MatrixXd> near(nc);
+#pragma omp parallel for schedule(dynamic)  // one cell per thread at a time, as in CellLayers
+  for (int c = 0; c < nc; ++c) {
     const Near& n = near_[c];
-    if (n.rows.empty()) continue;
-    const Eigen::MatrixXd v = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(c * np, np));
-    for (std::size_t k = 0; k < n.rows.size(); ++k) out.row(n.rows[k]) += v.row(k);
+    if (!n.rows.empty()) near[c] = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(c * np, np));
   }
+  for (int c = 0; c < nc; ++c)
+    for (std::size_t k = 0; k < near_[c].rows.size(); ++k) out.row(near_[c].rows[k]) += near[c].row(k);
   return out;
 }
 

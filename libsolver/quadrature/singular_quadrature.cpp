@@ -81,6 +81,12 @@ std::vector<QuadratureTarget> CellQuadratureGeometry::node_targets() const {
   return t;
 }
 
+HermiteData CellQuadratureGeometry::patch_data(const Eigen::MatrixXd& density) const {
+  if (density.rows() != grids_->n_grid->grid().size() || density.cols() != 3)
+    throw std::invalid_argument("CellQuadratureGeometry::patch_data: density must be (cell nodes x 3)");
+  return interp_->node_data(grids_->n_grid->analyze(density));
+}
+
 void CellQuadratureGeometry::geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn,
                                          int phi_shift) const {
   interp_->interpolate<3>(x_data_, s, x, phi_shift);
@@ -247,21 +253,24 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
 }
 
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density) const {
-  const CellGrids& grids = cell_->grids();
-  if (density.rows() != grids.n_grid->grid().size() || density.cols() != 3) {
-    throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3)");
-  }
-  return apply(density, grids.n_grid->analyze(density));
+  return apply(density, cell_->patch_data(density));
 }
 
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHCoeffs& c) const {
-  if (density.rows() != cell_->grids().n_grid->grid().size() || density.cols() != 3 ||
-      c.components() != 3 || c.order() > cell_->interpolator().order()) {
-    throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3) with an expansion of order <= " +
+  if (c.components() != 3 || c.order() > cell_->interpolator().order()) {
+    throw std::invalid_argument("LayerCorrection::apply: the patch density needs an expansion of order <= " +
                                 std::to_string(cell_->interpolator().order()));
   }
+  return apply(density, cell_->interpolator().node_data(c));
+}
+
+Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const HermiteData& data) const {
   const HermiteInterpolator& interp = cell_->interpolator();
-  const HermiteData data = interp.node_data(c);
+  if (density.rows() != cell_->grids().n_grid->grid().size() || density.cols() != 3 ||
+      data.rows() != static_cast<Eigen::Index>(interp.n_theta()) * interp.n_phi() || data.cols() != 12) {
+    throw std::invalid_argument("LayerCorrection::apply: density must be (cell nodes x 3), its Hermite data (" +
+                                std::to_string(interp.n_theta() * interp.n_phi()) + " x 12)");
+  }
   Eigen::MatrixXd out(num_targets(), 3);
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {

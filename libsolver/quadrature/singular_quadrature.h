@@ -62,6 +62,11 @@ class CellQuadratureGeometry {
   // On-surface targets: every node of the cell.
   std::vector<QuadratureTarget> node_targets() const;
 
+  // The Hermite data of a density given at the nodes (nodes x 3), through its expansion of
+  // order N: what LayerCorrection::apply interpolates at the patch points. One per density and
+  // cell serves all the cell's corrections.
+  HermiteData patch_data(const Eigen::MatrixXd& density) const;
+
   // x and J n at a point of the parameter sphere (Hermite interpolation; phi_shift as in
   // HermiteInterpolator::interpolate).
   void geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn, int phi_shift = 0) const;
@@ -108,6 +113,8 @@ class LayerCorrection {
   // The same with the patch's density given by its own expansion (order <= 2N), for densities
   // that are not band-limited to N, such as the normal in the identities of section 8.
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const SHCoeffs& patch_density) const;
+  // The same with the patch's density as Hermite data (CellQuadratureGeometry::patch_data).
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const HermiteData& patch_data) const;
 
  private:
   struct Unbuilt {};
