@@ -33,7 +33,7 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   if (real_space == RealSpace::assembled) {
     const Eigen::SparseMatrix<double> sum =
         near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
-    near_and_real_.emplace(sum);  // row-major: Eigen's sparse product is OpenMP-parallel over rows
+    near_and_real_.emplace(Eigen::SparseMatrix<double, Eigen::RowMajor>(sum));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "libsolver/spme/periodic_box.h"
 #include "libsolver/spme/spme_grid_cache.h"
 #include "near_field.h"
+#include "symmetric_block_matrix.h"
 #include "wall_elements.h"
 
 namespace rbcflow {
@@ -48,7 +49,7 @@ class WallOperator {
   // Periodic box, RealSpace::assembled: the real-space part of the Ewald sum as a sparse matrix
   // (wall_real_space.h) plus the near-field correction, for an operator applied many times at
   // fixed targets (the wall solve). Products change by rounding only.
-  std::optional<Eigen::SparseMatrix<double, Eigen::RowMajor>> near_and_real_;
+  std::optional<SymmetricBlockMatrix> near_and_real_;
 };
 
 }  // namespace rbcflow

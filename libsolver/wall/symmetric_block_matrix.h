@@ -1,0 +1,36 @@
+#pragma once
+// A sparse matrix of 3x3 blocks, targets by wall nodes, whose blocks are symmetric: sums of
+// Stokeslets times scalars, as the wall operator's assembled real-space part and its near-field
+// correction are (wall_real_space.h, near_field.h). Each block keeps the 6 entries of its upper
+// triangle and one node index: 52 bytes against 108 for its 9 entries with their indices in a
+// scalar sparse matrix. Its product reads the matrix once and is bound by memory bandwidth, so
+// it takes about half the time (bench_wall WallProduct).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace rbcflow {
+
+class SymmetricBlockMatrix {
+ public:
+  // From a 3 n_targets x 3 n_nodes matrix (index 3 i + k). Throws std::invalid_argument when a
+  // block differs from its transpose by more than 1e-12 of its largest entry.
+  explicit SymmetricBlockMatrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& m);
+
+  int num_targets() const { return static_cast<int>(offsets_.size()) - 1; }
+  int num_nodes() const { return num_nodes_; }
+  std::int64_t num_blocks() const { return offsets_.back(); }
+
+  // The product with nodal values (index 3 i + k); one value per target row.
+  Eigen::VectorXd operator*(const Eigen::VectorXd& f) const;
+
+ private:
+  int num_nodes_;
+  std::vector<std::int64_t> offsets_;  // blocks of target t: [offsets_[t], offsets_[t + 1])
+  std::vector<int> nodes_;
+  std::vector<std::array<double, 6>> blocks_;  // xx, xy, xz, yy, yz, zz
+};
+
+}  // namespace rbcflow

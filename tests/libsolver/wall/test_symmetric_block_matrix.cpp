@@ -1,0 +1,80 @@
+#include "libsolver/wall/symmetric_block_matrix.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "geometry/vessel.h"
+#include "libsolver/spme/ewald_parameters.h"
+#include "libsolver/wall/near_field.h"
+#include "libsolver/wall/wall_real_space.h"
+
+using namespace rbcflow;
+
+namespace {
+
+// n_targets x n_nodes random symmetric 3x3 blocks, each present with probability 0.3.
+Eigen::SparseMatrix<double, Eigen::RowMajor> random_symmetric_blocks(int n_targets, int n_nodes, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int t = 0; t < n_targets; ++t)
+    for (int n = 0; n < n_nodes; ++n) {
+      if (u(gen) < 0.4) continue;
+      Eigen::Matrix3d b;
+      for (int k = 0; k < 3; ++k)
+        for (int l = k; l < 3; ++l) b(k, l) = b(l, k) = u(gen);
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) entries.emplace_back(3 * t + k, 3 * n + l, b(k, l));
+    }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> m(3 * n_targets, 3 * n_nodes);
+  m.setFromTriplets(entries.begin(), entries.end());
+  return m;
+}
+
+}  // namespace
+
+// The block product equals the scalar sparse product to rounding.
+TEST(SymmetricBlockMatrix, ProductEqualsTheScalarSparseProduct) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> m = random_symmetric_blocks(60, 45, 3);
+  const SymmetricBlockMatrix b(m);
+  EXPECT_EQ(b.num_targets(), 60);
+  EXPECT_EQ(b.num_nodes(), 45);
+  EXPECT_EQ(b.num_blocks() * 9, m.nonZeros());
+  const Eigen::VectorXd f = Eigen::VectorXd::Random(3 * 45);
+  const Eigen::VectorXd expected = m * f;
+  EXPECT_LT((b * f - expected).norm(), 1e-14 * expected.norm());
+}
+
+// The wall operator's assembled matrices are made of symmetric blocks: the near-field
+// correction plus the real-space part of a small periodic tube converts, and its product
+// equals the scalar one.
+TEST(SymmetricBlockMatrix, HoldsTheWallNearFieldAndRealSpaceParts) {
+  const Eigen::Vector3d side(3.0, 3.0, 2.0);
+  const WallElements e(tube(TubeSpec{2.0, 2, side, 0.4}));
+  const PeriodicBox box(side);
+  const PointField& nodes = e.wall.surface.points;
+  const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stokeslet, 1e-7, box, e.points.rows(), nodes.rows(),
+                                                kAssembledRealSpace);
+  PointField sources(e.points.rows(), 3), targets(nodes.rows(), 3);
+  for (Eigen::Index i = 0; i < sources.rows(); ++i) sources.row(i) = box.wrap(e.points.row(i).transpose()).transpose();
+  for (Eigen::Index i = 0; i < targets.rows(); ++i) targets.row(i) = box.wrap(nodes.row(i).transpose()).transpose();
+  const NeighborList pairs(box, c.parameters.cutoff, sources, targets);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> m =
+      near_field(e, nodes).correction + wall_real_space_matrix(e, pairs, c.parameters.xi);
+  const SymmetricBlockMatrix b(m);
+  const Eigen::VectorXd f = Eigen::VectorXd::Random(3 * e.num_nodes());
+  const Eigen::VectorXd expected = m * f;
+  EXPECT_LT((b * f - expected).norm(), 1e-14 * expected.norm());
+}
+
+TEST(SymmetricBlockMatrix, RejectsWhatItCannotHold) {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> m = random_symmetric_blocks(4, 5, 7);
+  EXPECT_THROW(SymmetricBlockMatrix(Eigen::SparseMatrix<double, Eigen::RowMajor>(7, 6)), std::invalid_argument);
+  const SymmetricBlockMatrix b(m);
+  EXPECT_THROW(b * Eigen::VectorXd::Zero(14), std::invalid_argument);
+  m.coeffRef(0, 1) += 1e-6;  // block (0, 0) no longer symmetric
+  EXPECT_THROW(SymmetricBlockMatrix{m}, std::invalid_argument);
+}
