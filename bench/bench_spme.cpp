@@ -11,6 +11,8 @@
 //   build/bin/bench_spme --benchmark_filter=GridTransform     one grid's forward + backward
 // transforms with FFTW_ESTIMATE and FFTW_MEASURE plans, on tube27's grids (arguments: K for a
 // K x K x 2K grid, density components, 1 = measured; all OpenMP threads; plan_ms: the planning).
+//   build/bin/bench_spme --benchmark_filter=NeighborList      tube27's cell-cell lists (argument:
+// the cutoff in thousandths)
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -138,7 +140,27 @@ void million(benchmark::internal::Benchmark* b) {
       ->UseRealTime();
 }
 
+// The neighbour list of tube27's cells: 13,824 points (random, uniform) in its 6.6 x 6.6 x
+// 13.33 box, cutoffs of the single (0.891) and double layer (1.654) at tolerance 1e-6.
+void BM_NeighborList(benchmark::State& state) {
+  const Eigen::Vector3d side(6.6, 6.6, 13.33);
+  const PeriodicBox box(side);
+  const PointField x = (random_field(13824, 7, true).array().rowwise() * side.transpose().array()).matrix();
+  const double cutoff = state.range(0) / 1000.0;
+  std::int64_t pairs = 0;
+  for (auto _ : state) pairs = NeighborList(box, cutoff, x, x).n_pairs();
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+
 }  // namespace
+
+BENCHMARK(BM_NeighborList)
+    ->Arg(891)
+    ->Arg(1654)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK(BM_SingleLayer)->Apply(small_sizes);
 BENCHMARK(BM_DoubleLayer)->Apply(small_sizes);

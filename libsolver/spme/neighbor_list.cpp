@@ -116,16 +116,28 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
 
   // Visits every (source, image) that can lie within the cutoff of the target sorted at t.
   const double rc2 = cutoff * cutoff, eps2 = coincidence_ * coincidence_;
+  const double skip2 = rc2 * (1.0 + 1e-10);  // a cell this far or farther holds no pair, whatever the rounding
   const auto visit = [&](int t, auto&& emit) {
     const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
     const Eigen::Vector3d x(xt[0], xt[1], xt[2]);
     std::array<int, 3> home{};
     for (int d = 0; d < 3; ++d) home[d] = cells.cell_of(x, d);
+    // Squared distance along d from the target to the cell at offset o: cells whose box lies
+    // beyond the cutoff hold no pair and are skipped.
+    const auto gap2 = [&](int d, int o) {
+      const double g = o > 0 ? (home[d] + o) * cells.side[d] - x[d] : o < 0 ? x[d] - (home[d] + o + 1) * cells.side[d] : 0.0;
+      return g > 0.0 ? g * g : 0.0;
+    };
     for (int o0 = -cells.reach[0]; o0 <= cells.reach[0]; ++o0) {
       const int u0 = home[0] + o0, n0 = floor_div(u0, cells.n[0]), c0 = u0 - n0 * cells.n[0];
+      const double g0 = gap2(0, o0);
+      if (g0 >= skip2) continue;
       for (int o1 = -cells.reach[1]; o1 <= cells.reach[1]; ++o1) {
         const int u1 = home[1] + o1, n1 = floor_div(u1, cells.n[1]), c1 = u1 - n1 * cells.n[1];
+        const double g01 = g0 + gap2(1, o1);
+        if (g01 >= skip2) continue;
         for (int o2 = -cells.reach[2]; o2 <= cells.reach[2]; ++o2) {
+          if (g01 + gap2(2, o2) >= skip2) continue;
           const int u2 = home[2] + o2, n2 = floor_div(u2, cells.n[2]), c2 = u2 - n2 * cells.n[2];
           const int c = (c0 * cells.n[1] + c1) * cells.n[2] + c2;
           const int image = cells.image_id(n0, n1, n2);
