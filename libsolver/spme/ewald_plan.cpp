@@ -46,6 +46,13 @@ PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
   return u;
 }
 
+PointField EwaldPlan::smooth_single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
+  PointField u = smooth_.single_layer(spreading, x);
+  timings_.real_space = 0.0;
+  timings_.smooth = smooth_.timings();
+  return u;
+}
+
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   PointField u = smooth_.double_layer(q, normals);
   const auto start = std::chrono::steady_clock::now();

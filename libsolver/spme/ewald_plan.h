@@ -60,6 +60,8 @@ class EwaldPlan {
   // The smooth (SPME) part of single_layer alone, for a caller that holds the real-space part
   // as a matrix (wall/wall_real_space.h).
   PointField smooth_single_layer(const PointField& forces);
+  // The same for forces = map x, through `spreading` = smooth().sources().spreading_matrix(map).
+  PointField smooth_single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x);
 
   const NeighborList& neighbors() const { return neighbors_; }
   const SpmePlan& smooth() const { return smooth_; }

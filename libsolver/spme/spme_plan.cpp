@@ -53,6 +53,39 @@ PointField SpmePlan::single_layer(const PointField& forces) {
   return transform_and_interpolate();
 }
 
+PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
+  if (spreading.rows() != static_cast<Eigen::Index>(grid_->real_points()) || spreading.cols() != x.rows())
+    throw std::invalid_argument("SPME: a spreading matrix of " + std::to_string(spreading.rows()) + " x " +
+                                std::to_string(spreading.cols()) + " for " + std::to_string(x.rows()) +
+                                " unknowns on a grid of " + std::to_string(grid_->real_points()) + " points");
+  auto t = std::chrono::steady_clock::now();
+  density_.resize(3 * static_cast<std::size_t>(x.rows()));
+  real_.reserve(3 * grid_->real_points());
+  for (Eigen::Index n = 0; n < x.rows(); ++n)
+    for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(n) + c] = x(n, c);
+  const double* in = density_.data();
+  double* grid = real_.data();
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (Eigen::Index g = 0; g < spreading.rows(); ++g) {
+    double a = 0.0, b = 0.0, c = 0.0;
+    for (SpmeStencils::SpreadingMatrix::InnerIterator it(spreading, g); it; ++it) {
+      const double* v = in + 3 * static_cast<std::size_t>(it.col());
+      a += it.value() * v[0];
+      b += it.value() * v[1];
+      c += it.value() * v[2];
+    }
+    grid[3 * g] = a;
+    grid[3 * g + 1] = b;
+    grid[3 * g + 2] = c;
+  }
+  timings_.spreading = seconds_since(t);
+  grid_->forward(3, real_.data(), velocity_.data());
+  timings_.fft = seconds_since(t);
+  grid_->apply_stokeslet(velocity_.data());
+  timings_.influence = seconds_since(t);
+  return transform_and_interpolate();
+}
+
 PointField SpmePlan::double_layer(const PointField& q, const PointField& normals) {
   check_rows(q, n_sources(), "the double-layer density");
   check_rows(normals, n_sources(), "the normal field");

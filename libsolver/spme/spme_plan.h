@@ -39,6 +39,11 @@ class SpmePlan {
   PointField single_layer(const PointField& forces);
   // q (the density, weights included) and normals: one row per source.
   PointField double_layer(const PointField& q, const PointField& normals);
+  // single_layer(map x) for `spreading` = sources().spreading_matrix(map): x one row per
+  // unknown of the map.
+  PointField single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x);
+
+  const SpmeStencils& sources() const { return *sources_; }
 
   const SpmeTimings& timings() const { return timings_; }
 

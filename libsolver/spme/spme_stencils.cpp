@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "bspline.h"
 
@@ -136,6 +139,86 @@ void SpmeStencils::interpolate(const double* grid, PointField& out) const {
       out(order_[i], k) = acc;
     }
   }
+}
+
+SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const {
+  if (map.rows() != size())
+    throw std::invalid_argument("SPME spreading matrix: the map has " + std::to_string(map.rows()) + " rows for " +
+                                std::to_string(size()) + " points");
+  const Eigen::SparseMatrix<double> by_unknown = map;  // column n: the points of unknown n
+  std::vector<int> rank(size());
+  for (int k = 0; k < size(); ++k) rank[order_[k]] = k;
+  const int m = static_cast<int>(map.cols());
+  const auto wrap = [&](int i, int d) { return ((i % K_[d]) + K_[d]) % K_[d]; };
+  std::vector<std::vector<std::pair<int, double>>> columns(m);
+#pragma omp parallel
+  {
+    std::vector<double> box;
+#pragma omp for schedule(dynamic, 16)
+    for (int n = 0; n < m; ++n) {
+      Eigen::SparseMatrix<double>::InnerIterator first_point(by_unknown, n);
+      if (!first_point) continue;
+      // The unknown's stencils in unwrapped grid indices from its first point's: a box of
+      // e_0 x e_1 x e_2 grid points accumulates them.
+      const int* base = &first_[3 * static_cast<std::size_t>(rank[first_point.row()])];
+      std::array<int, 3> lo{0, 0, 0}, hi{p_, p_, p_};
+      const auto offset = [&](int k, int d) {
+        int o = first_[3 * static_cast<std::size_t>(k) + d] - base[d];
+        if (o > K_[d] / 2) o -= K_[d];
+        if (o < -K_[d] / 2) o += K_[d];
+        return o;
+      };
+      for (Eigen::SparseMatrix<double>::InnerIterator it(by_unknown, n); it; ++it)
+        for (int d = 0; d < 3; ++d) {
+          const int o = offset(rank[it.row()], d);
+          lo[d] = std::min(lo[d], o);
+          hi[d] = std::max(hi[d], o + p_);
+        }
+      const int e0 = hi[0] - lo[0], e1 = hi[1] - lo[1], e2 = hi[2] - lo[2];
+      box.assign(static_cast<std::size_t>(e0) * e1 * e2, 0.0);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(by_unknown, n); it; ++it) {
+        const int k = rank[it.row()];
+        const double* w = &weights_[3 * static_cast<std::size_t>(p_) * k];
+        const int o0 = offset(k, 0) - lo[0], o1 = offset(k, 1) - lo[1], o2 = offset(k, 2) - lo[2];
+        for (int a = 0; a < p_; ++a)
+          for (int b = 0; b < p_; ++b) {
+            const double wab = it.value() * w[a] * w[p_ + b];
+            double* row = &box[(static_cast<std::size_t>(o0 + a) * e1 + (o1 + b)) * e2 + o2];
+            for (int c = 0; c < p_; ++c) row[c] += wab * w[2 * p_ + c];
+          }
+      }
+      // Grid indices wrapped; a box wider than the grid folds onto itself: merge equal indices.
+      std::vector<std::pair<int, double>>& column = columns[n];
+      for (int a = 0; a < e0; ++a)
+        for (int b = 0; b < e1; ++b)
+          for (int c = 0; c < e2; ++c) {
+            const double v = box[(static_cast<std::size_t>(a) * e1 + b) * e2 + c];
+            if (v == 0.0) continue;
+            const int g = (wrap(base[0] + lo[0] + a, 0) * K_[1] + wrap(base[1] + lo[1] + b, 1)) * K_[2] +
+                          wrap(base[2] + lo[2] + c, 2);
+            column.emplace_back(g, v);
+          }
+      std::sort(column.begin(), column.end());
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < column.size(); ++i) {
+        if (kept > 0 && column[kept - 1].first == column[i].first) {
+          column[kept - 1].second += column[i].second;
+        } else {
+          column[kept++] = column[i];
+        }
+      }
+      column.resize(kept);
+    }
+  }
+  Eigen::SparseMatrix<double> s(static_cast<Eigen::Index>(K_[0]) * K_[1] * K_[2], m);
+  Eigen::VectorXi sizes(m);
+  for (int n = 0; n < m; ++n) sizes[n] = static_cast<int>(columns[n].size());
+  s.reserve(sizes);
+  for (int n = 0; n < m; ++n) {
+    for (const auto& [g, v] : columns[n]) s.insert(g, n) = v;
+    std::vector<std::pair<int, double>>().swap(columns[n]);
+  }
+  return SpreadingMatrix(s);
 }
 
 template void SpmeStencils::spread<3>(const double*, double*) const;

@@ -9,6 +9,7 @@
 // Spreading is parallel without races by colouring: the points are sorted into slabs along the
 // first grid direction, each at least p - 1 grid planes wide, an even number of them around
 // the periodic grid; slabs of one parity never write to the same grid plane.
+#include <Eigen/SparseCore>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -31,6 +32,15 @@ class SpmeStencils {
 
   // out(point, c) = sum_g W_point(g) grid[3 * g + c].
   void interpolate(const double* grid, PointField& out) const;
+
+  // The spreading of densities that are a fixed linear map of other unknowns (point i's density
+  // = sum_n map(i, n) x_n) as one matrix S, grid points (the index g of spread()) x unknowns:
+  // spread(map x) = S x. For points that never move and whose densities come from fewer
+  // unknowns (the wall's Gauss points from its nodal densities, 7 per triangle), S holds the
+  // stencils merged per unknown and its product reads less than spreading point by point.
+  // Throws std::invalid_argument when map has not one row per point.
+  using SpreadingMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  SpreadingMatrix spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const;
 
  private:
   template <int C>

@@ -1,6 +1,7 @@
 #include "wall_elements.h"
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "triangle_rules.h"
 
@@ -40,6 +41,19 @@ Eigen::Matrix<double, Eigen::Dynamic, 3> WallElements::weighted_density(
       out.row(7 * t + q) = weights[7 * t + q] * f;
     }
   return out;
+}
+
+Eigen::SparseMatrix<double, Eigen::RowMajor> WallElements::density_map() const {
+  const TriangleRule& rule = gauss7_rule();
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(21 * static_cast<std::size_t>(num_triangles()));
+  for (int t = 0; t < num_triangles(); ++t)
+    for (int q = 0; q < 7; ++q)
+      for (int a = 0; a < 3; ++a)
+        entries.emplace_back(7 * t + q, wall.surface.triangles(t, a), weights[7 * t + q] * rule.barycentric(q, a));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> map(points.rows(), num_nodes());
+  map.setFromTriplets(entries.begin(), entries.end());
+  return map;
 }
 
 Eigen::Vector3d WallElements::total(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodal) const {

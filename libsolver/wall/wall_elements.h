@@ -2,6 +2,7 @@
 // The wall's linear boundary elements (paper section 4): the force density is linear on each
 // triangle, f(y) = sum_a lambda_a(y) f_{node a}, integrated by the 7-point Gauss rule.
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "geometry/vessel_mesh.h"
@@ -26,6 +27,8 @@ struct WallElements {
   // The density at the Gauss points times their weights, from nodal densities (one row each).
   Eigen::Matrix<double, Eigen::Dynamic, 3> weighted_density(
       const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodal) const;
+  // weighted_density as a matrix: Gauss points (row 7 t + q) x nodes.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> density_map() const;
   // integral over the wall of f dS.
   Eigen::Vector3d total(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodal) const;
 };

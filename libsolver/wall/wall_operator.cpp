@@ -34,19 +34,23 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
     const Eigen::SparseMatrix<double> sum =
         near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
     near_and_real_.emplace(Eigen::SparseMatrix<double, Eigen::RowMajor>(sum));
+    node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
   }
 }
 
 PointField WallOperator::apply(const PointField& f) {
-  const PointField density = elements_->weighted_density(f);
   PointField u;
   if (near_and_real_) {
-    u = ewald_->smooth_single_layer(density);
-    const double self = ewald_real_stokeslet_self(ewald_->xi());
-    for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+    u = ewald_->smooth_single_layer(*node_spreading_, f);
+    if (!near_.coincident.empty()) {
+      const PointField density = elements_->weighted_density(f);
+      const double self = ewald_real_stokeslet_self(ewald_->xi());
+      for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+    }
     const Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
     return u + to_field(rest);
   }
+  const PointField density = elements_->weighted_density(f);
   if (ewald_) {
     u = ewald_->single_layer(density);
     const double self = ewald_real_stokeslet_self(ewald_->xi());

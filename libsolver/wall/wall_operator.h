@@ -50,6 +50,9 @@ class WallOperator {
   // (wall_real_space.h) plus the near-field correction, for an operator applied many times at
   // fixed targets (the wall solve). Products change by rounding only.
   std::optional<SymmetricBlockMatrix> near_and_real_;
+  // ... and the SPME spreading of the Gauss points' densities as one matrix on the nodal
+  // densities (SpmeStencils::spreading_matrix of WallElements::density_map).
+  std::optional<SpmeStencils::SpreadingMatrix> node_spreading_;
 };
 
 }  // namespace rbcflow

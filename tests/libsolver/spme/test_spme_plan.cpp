@@ -2,7 +2,10 @@
 #include <omp.h>
 
 #include <cmath>
+#include <array>
 #include <cstdio>
+#include <random>
+#include <vector>
 
 #include "libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/spme_plan.h"
@@ -108,4 +111,32 @@ TEST(SpmePlan, RejectsMismatchedDensities) {
                 d.xs, d.xt);
   EXPECT_THROW(plan.single_layer(random_vectors(10, 1)), std::invalid_argument);
   EXPECT_THROW(plan.double_layer(d.q, random_vectors(10, 1)), std::invalid_argument);
+}
+
+// Sources whose forces are a fixed linear map of fewer unknowns (3 of 100 each, as the wall's
+// Gauss points of its nodal densities), spread through SpmeStencils::spreading_matrix: the
+// same single layer as spreading map x point by point, to rounding. The points of an unknown
+// lie anywhere in the box, so its stencils span more than the grid and fold onto it.
+TEST(SpmePlan, SpreadingMatrixGivesTheSameSingleLayer) {
+  const Data& d = data();
+  std::mt19937 gen(9);
+  std::uniform_int_distribution<int> pick(0, 99);
+  std::uniform_real_distribution<double> weight(0.1, 1.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < d.xs.rows(); ++i)
+    for (int a = 0; a < 3; ++a) entries.emplace_back(i, pick(gen), weight(gen));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> map(d.xs.rows(), 100);
+  map.setFromTriplets(entries.begin(), entries.end());
+  const PointField x = random_vectors(100, 11);
+  const PointField forces = map * x;
+  for (const std::array<int, 3> K : {std::array<int, 3>{32, 32, 32}, std::array<int, 3>{16, 18, 20}}) {
+    SpmePlan plan(std::make_shared<const SpmeGrid>(kBox, EwaldParameters{4.0, 0.1, K, 8}), d.xs, d.xt);
+    const PointField expected = plan.single_layer(forces);
+    const PointField u = plan.single_layer(plan.sources().spreading_matrix(map), x);
+    EXPECT_LT((u - expected).norm(), 1e-13 * expected.norm()) << K[0] << " x " << K[1] << " x " << K[2];
+  }
+  EXPECT_THROW(SpmePlan(std::make_shared<const SpmeGrid>(kBox, EwaldParameters{4.0, 0.1, {16, 16, 16}, 6}), d.xs, d.xt)
+                   .sources()
+                   .spreading_matrix(Eigen::SparseMatrix<double, Eigen::RowMajor>(5, 3)),
+               std::invalid_argument);
 }
