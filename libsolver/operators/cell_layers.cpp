@@ -108,12 +108,12 @@ PairShares CellLayers::folded_shares(Layer layer) const {
   };
   PairShares shares;
   shares.offsets.assign(static_cast<std::size_t>(nodes_.size()) + 1, 0);
-  for_each_target([&](int, int row, const std::vector<PatchNode>& nodes) { shares.offsets[row + 1] += nodes.size(); });
+  for_each_target([&](int, int row, std::span<const PatchNode> nodes) { shares.offsets[row + 1] += nodes.size(); });
   for (std::size_t r = 1; r < shares.offsets.size(); ++r) shares.offsets[r] += shares.offsets[r - 1];
   shares.sources.resize(shares.offsets.back());
   shares.shares.resize(shares.offsets.back());
   std::vector<std::int64_t> next(shares.offsets.begin(), shares.offsets.end() - 1);
-  for_each_target([&](int c, int row, const std::vector<PatchNode>& nodes) {
+  for_each_target([&](int c, int row, std::span<const PatchNode> nodes) {
     for (const PatchNode& e : nodes) {
       shares.sources[next[row]] = c * np + e.node;
       shares.shares[next[row]++] = e.eta;

@@ -1,7 +1,9 @@
 #include "singular_quadrature.h"
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
 
@@ -194,11 +196,39 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       weights[b].push_back(q.weight);
     }
   }
+  // The patch nodes of target t (its table's, shifted with its stencils), but its own node.
+  const auto for_each_patch_node = [&](int t, auto&& f) {
+    const int node_shift = rings ? stencils->phi_shift[t] / cells_per_node : 0;
+    for (const PatchNode& centred : patch_nodes[stencils->table[t]]) {
+      const int i = centred.node / grid.n_phi();
+      int j = centred.node % grid.n_phi() + node_shift;
+      if (j >= grid.n_phi()) j -= grid.n_phi();
+      const int p = i * grid.n_phi() + j;
+      if (p != targets[t].self_node) f(p, centred.eta);
+    }
+  };
+  // Storage in one array per kind and correction (targets in order), sized first: the node
+  // entries a correction keeps or folds depend on the distances.
   for (LayerCorrection* c : corrections) {
     c->stencils_ = stencils;
-    c->patch_k_.resize(n_targets);
-    c->nodes_.resize(n_targets);
-    c->folded_.resize(n_targets);
+    for (std::vector<std::int64_t>* offsets : {&c->patch_offsets_, &c->node_offsets_, &c->folded_offsets_})
+      offsets->assign(n_targets + 1, 0);
+  }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int t = 0; t < n_targets; ++t) {
+    for (LayerCorrection* c : corrections)
+      c->patch_offsets_[t + 1] = static_cast<std::int64_t>(stencils->tables[stencils->table[t]].size());
+    for_each_patch_node(t, [&](int p, double) {
+      const double distance = (Eigen::Vector3d(nodes.x.row(p)) - targets[t].x).norm();
+      for (LayerCorrection* c : corrections) ++(distance < c->fold_radius_ ? c->folded_offsets_ : c->node_offsets_)[t + 1];
+    });
+  }
+  for (LayerCorrection* c : corrections) {
+    for (std::vector<std::int64_t>* offsets : {&c->patch_offsets_, &c->node_offsets_, &c->folded_offsets_})
+      for (int t = 0; t < n_targets; ++t) (*offsets)[t + 1] += (*offsets)[t];
+    c->patch_k_.resize(c->patch_offsets_.back());
+    c->nodes_.resize(c->node_offsets_.back());
+    c->folded_.resize(c->folded_offsets_.back());
   }
 
 #pragma omp parallel for schedule(dynamic, 4)
@@ -213,7 +243,6 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     Eigen::Vector3d xc, jc;
     cell.geometry_at(interp.stencil(target.theta, target.phi), xc, jc);
     const Eigen::Vector3d x0 = target.self_node >= 0 ? xc : Eigen::Vector3d(target.x);
-    for (LayerCorrection* c : corrections) c->patch_k_[t].reserve(table.size());
     for (std::size_t q = 0; q < table.size(); ++q) {
       Eigen::Vector3d xq, jn;
       cell.geometry_at(table[q], xq, jn, shift);
@@ -222,33 +251,32 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * weight[q]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, jn * weight[q]));
-        c->patch_k_[t].push_back(pack(k));
+        c->patch_k_[c->patch_offsets_[t] + q] = pack(k);
       }
     }
     // The regular rule's share of the patch, eta K w at the nodes inside it, is removed here,
     // or by the caller for the nodes within its fold radius.
-    const int node_shift = rings ? shift / cells_per_node : 0;
-    for (const PatchNode& centred : patch_nodes[stencils->table[t]]) {
-      const int i = centred.node / grid.n_phi();
-      int j = centred.node % grid.n_phi() + node_shift;
-      if (j >= grid.n_phi()) j -= grid.n_phi();
-      const int p = i * grid.n_phi() + j;
-      if (p == target.self_node) continue;
-      const double eta = centred.eta;
+    std::array<std::int64_t, 2> kept{}, folded{};  // cursors (one or two corrections)
+    for (std::size_t i = 0; i < corrections.size(); ++i) {
+      kept[i] = corrections[i]->node_offsets_[t];
+      folded[i] = corrections[i]->folded_offsets_[t];
+    }
+    for_each_patch_node(t, [&](int p, double eta) {
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
       const double distance = r.norm();
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
-      for (LayerCorrection* c : corrections) {
+      for (std::size_t i = 0; i < corrections.size(); ++i) {
+        LayerCorrection* c = corrections[i];
         if (distance < c->fold_radius_) {
-          c->folded_[t].push_back({p, eta});
+          c->folded_[folded[i]++] = {p, eta};
           continue;
         }
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));
-        c->nodes_[t].push_back({p, pack(k)});
+        c->nodes_[kept[i]++] = {p, pack(k)};
       }
-    }
+    });
   }
 }
 
@@ -275,7 +303,7 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
     const std::vector<HermiteStencil>& table = stencils_->tables[stencils_->table[t]];
-    const std::vector<PackedKernel>& k = patch_k_[t];
+    const PackedKernel* k = patch_k_.data() + patch_offsets_[t];
     const int shift = stencils_->phi_shift[t];
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (std::size_t q = 0; q < table.size(); ++q) {
@@ -283,7 +311,8 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
       interp.interpolate<3>(data, table[q], psi, shift);
       sum += times(k[q], psi);
     }
-    for (const NodeEntry& e : nodes_[t]) sum += times(e.k, Eigen::Vector3d(density.row(e.node)));
+    for (std::int64_t i = node_offsets_[t]; i < node_offsets_[t + 1]; ++i)
+      sum += times(nodes_[i].k, Eigen::Vector3d(density.row(nodes_[i].node)));
     out.row(t) = sum;
   }
   return out;

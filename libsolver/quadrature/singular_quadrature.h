@@ -15,6 +15,7 @@
 // GMRES product calls.
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <utility>
@@ -106,7 +107,9 @@ class LayerCorrection {
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
   // The patch nodes of target t whose share the caller removes (see fold_radius).
-  const std::vector<PatchNode>& folded(int t) const { return folded_[t]; }
+  std::span<const PatchNode> folded(int t) const {
+    return {folded_.data() + folded_offsets_[t], static_cast<std::size_t>(folded_offsets_[t + 1] - folded_offsets_[t])};
+  }
   // Correction at every target for the density given at the cell's nodes (nodes x 3); the
   // patch sees its expansion of order N (exact for the band-limited densities of the solver).
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density) const;
@@ -141,9 +144,12 @@ class LayerCorrection {
   std::vector<QuadratureTarget> targets_;
   double fold_radius_;
   std::shared_ptr<const PatchStencils> stencils_;
-  std::vector<std::vector<PackedKernel>> patch_k_;  // per target, in the order of its table
-  std::vector<std::vector<NodeEntry>> nodes_;       // nodes in the patch: -eta K w
-  std::vector<std::vector<PatchNode>> folded_;      // nodes in the patch left to the caller
+  // Per target t, entries [offsets[t], offsets[t + 1]) of each array (one allocation each, made
+  // by the calling thread: the build's threads then touch no fresh memory of their own).
+  std::vector<PackedKernel> patch_k_;  // in the order of the target's table
+  std::vector<NodeEntry> nodes_;       // nodes in the patch: -eta K w
+  std::vector<PatchNode> folded_;      // nodes in the patch left to the caller
+  std::vector<std::int64_t> patch_offsets_, node_offsets_, folded_offsets_;
 };
 
 // Free-space layer potential of one cell at its own nodes: regular rule + corrections.
