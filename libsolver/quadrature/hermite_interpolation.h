@@ -21,10 +21,11 @@ using HermiteData = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 // Where a point (theta, phi) falls on the uniform grid, with its Hermite weights in product
 // form: the weight of corner (a, b) in {0,1}^2 and data type (d_theta, d_phi) is
 // theta_w[2 a + d_theta] * phi_w[2 b + d_phi] (value and slope basis at each end).
+// Trivial (no default values), so that large tables of stencils need no initialisation.
 struct HermiteStencil {
-  int i = 0, j = 0;                // the cell's (theta_i, phi_j) corner
-  std::array<double, 4> theta_w{};
-  std::array<double, 4> phi_w{};
+  int i, j;  // the cell's (theta_i, phi_j) corner
+  std::array<double, 4> theta_w;
+  std::array<double, 4> phi_w;
 };
 
 class HermiteInterpolator {

@@ -164,25 +164,29 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     stencils->phi_shift[t] = j * cells_per_node;
   }
   const int n_tables = static_cast<int>(centres.size());
-  stencils->tables.resize(n_tables);
-  std::vector<std::vector<double>> weights(n_tables);
+  const std::size_t per_table = static_cast<std::size_t>(n_rho) * n_varphi;
+  stencils->points_per_table = per_table;
+  stencils->points = std::make_unique_for_overwrite<HermiteStencil[]>(n_tables * per_table);
+  const auto weights = std::make_unique_for_overwrite<double[]>(n_tables * per_table);
   // Directions of the grid nodes on the parameter sphere: a node is in a patch when
   // u_node . u_centre > cos(rho_1), which needs no trigonometry per (centre, node) pair.
   Eigen::MatrixXd u(grid.size(), 3);
   for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
   // The regular rule's nodes inside each table's patch with their eta (shifted with the
-  // stencils for the node targets of a ring).
-  std::vector<std::vector<PatchNode>> patch_nodes(n_tables);
+  // stencils for the node targets of a ring): table b's are [b * grid.size(), + count[b]).
+  const auto patch_nodes = std::make_unique_for_overwrite<PatchNode[]>(static_cast<std::size_t>(n_tables) * grid.size());
+  std::vector<int> patch_node_count(n_tables, 0);
 #pragma omp parallel for schedule(dynamic, 4)
   for (int b = 0; b < n_tables; ++b) {
     const TableCentre& centre = centres[b];
     const Eigen::Vector3d uc = unit_direction(centre.theta, centre.phi);
+    PatchNode* listed = patch_nodes.get() + static_cast<std::size_t>(b) * grid.size();
     for (int p = 0; p < grid.size(); ++p) {
       const Eigen::Vector3d up = u.row(p).transpose();
       const double cos_rho = uc.dot(up);
       if (cos_rho <= cos_rho1) continue;
       const double rho = std::atan2(uc.cross(up).norm(), cos_rho);
-      if (rho < rho1) patch_nodes[b].push_back({p, patch_mask(rho, rho1)});
+      if (rho < rho1) listed[patch_node_count[b]++] = {p, patch_mask(rho, rho1)};
     }
     double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
     if (centre.target >= 0 && targets[centre.target].distance > 0) {
@@ -190,16 +194,18 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       cell.geometry_at(interp.stencil(centre.theta, centre.phi), xc, jc);
       delta = targets[centre.target].distance / std::sqrt(jc.norm());
     }
-    for (const PatchPoint& q : polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta)) {
-      if (q.weight == 0.0) continue;
-      stencils->tables[b].push_back(interp.stencil(q.theta, q.phi));
-      weights[b].push_back(q.weight);
+    const std::vector<PatchPoint> patch = polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta);
+    for (std::size_t q = 0; q < per_table; ++q) {
+      stencils->points[b * per_table + q] = interp.stencil(patch[q].theta, patch[q].phi);
+      weights[b * per_table + q] = patch[q].weight;
     }
   }
   // The patch nodes of target t (its table's, shifted with its stencils), but its own node.
   const auto for_each_patch_node = [&](int t, auto&& f) {
     const int node_shift = rings ? stencils->phi_shift[t] / cells_per_node : 0;
-    for (const PatchNode& centred : patch_nodes[stencils->table[t]]) {
+    const int b = stencils->table[t];
+    for (const PatchNode& centred :
+         std::span<const PatchNode>(patch_nodes.get() + static_cast<std::size_t>(b) * grid.size(), patch_node_count[b])) {
       const int i = centred.node / grid.n_phi();
       int j = centred.node % grid.n_phi() + node_shift;
       if (j >= grid.n_phi()) j -= grid.n_phi();
@@ -217,7 +223,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
 #pragma omp parallel for schedule(dynamic, 64)
   for (int t = 0; t < n_targets; ++t) {
     for (LayerCorrection* c : corrections)
-      c->patch_offsets_[t + 1] = static_cast<std::int64_t>(stencils->tables[stencils->table[t]].size());
+      c->patch_offsets_[t + 1] = static_cast<std::int64_t>(per_table);
     for_each_patch_node(t, [&](int p, double) {
       const double distance = (Eigen::Vector3d(nodes.x.row(p)) - targets[t].x).norm();
       for (LayerCorrection* c : corrections) ++(distance < c->fold_radius_ ? c->folded_offsets_ : c->node_offsets_)[t + 1];
@@ -234,8 +240,8 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
 #pragma omp parallel for schedule(dynamic, 4)
   for (int t = 0; t < n_targets; ++t) {
     const QuadratureTarget& target = targets[t];
-    const std::vector<HermiteStencil>& table = stencils->tables[stencils->table[t]];
-    const std::vector<double>& weight = weights[stencils->table[t]];
+    const std::span<const HermiteStencil> table = stencils->of_target(t);
+    const double* weight = weights.get() + static_cast<std::size_t>(stencils->table[t]) * per_table;
     const int shift = stencils->phi_shift[t];
     // The patch centre as the interpolant sees it: r = x_q - x0 is measured from it so that
     // the kernel's singularity sits exactly at rho = 0 (an offset of the interpolation error
@@ -302,7 +308,7 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
   Eigen::MatrixXd out(num_targets(), 3);
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
-    const std::vector<HermiteStencil>& table = stencils_->tables[stencils_->table[t]];
+    const std::span<const HermiteStencil> table = stencils_->of_target(t);
     const PackedKernel* k = patch_k_.data() + patch_offsets_[t];
     const int shift = stencils_->phi_shift[t];
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();

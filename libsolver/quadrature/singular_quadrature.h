@@ -129,10 +129,16 @@ class LayerCorrection {
   // Where the patch points of each target sit on the Hermite grid, shared by the single- and
   // double-layer corrections of the same targets. The node targets of one ring of the grid
   // share one table (their patches differ by a rotation about the axis: a shift in phi by
-  // whole Hermite cells); any other target has a table of its own.
+  // whole Hermite cells); any other target has a table of its own. Every table holds the whole
+  // polar rule, points_per_table points, in one array allocated without initialisation by the
+  // calling thread (the build's threads fill it; they would otherwise fault fresh pages in).
   struct PatchStencils {
-    std::vector<std::vector<HermiteStencil>> tables;
-    std::vector<int> table, phi_shift;  // per target
+    std::size_t points_per_table = 0;
+    std::unique_ptr<HermiteStencil[]> points;  // table b: [b, b + 1) * points_per_table
+    std::vector<int> table, phi_shift;         // per target
+    std::span<const HermiteStencil> of_target(int t) const {
+      return {points.get() + static_cast<std::size_t>(table[t]) * points_per_table, points_per_table};
+    }
   };
   using PackedKernel = std::array<double, 6>;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
   struct NodeEntry {
