@@ -87,6 +87,30 @@ class ShareLookup {
   double nearest_image2_ = 0.0;
 };
 
+
+// u.row(t) = sum over the pairs (i, s, r) of target t of term(i, s, r, weight), parallel over
+// the targets; weight(r2) is the pair's 1 - share (1 when the target shares no pair).
+template <class Term>
+PointField sum_over_pairs(const NeighborList& pairs, const ShareLookup& lookup, Term&& term) {
+  PointField u(pairs.n_targets(), 3);
+#pragma omp parallel
+  {
+    std::vector<double> work = lookup.work(pairs);
+#pragma omp for schedule(dynamic, 64)
+    for (int k = 0; k < pairs.n_targets(); ++k) {
+      const int t = pairs.target_order()[k];
+      const bool weighted = lookup.scatter(t, work);
+      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
+        acc += term(i, s, r, [&](double r2) { return weighted ? lookup.weight(s, r2, work) : 1.0; });
+      });
+      if (weighted) lookup.clear(t, work);
+      u.row(t) = acc.transpose();
+    }
+  }
+  return u;
+}
+
 }  // namespace
 
 double pair_share_radius(const PeriodicBox& box, double cutoff) {
@@ -102,39 +126,25 @@ PointField real_space_single_layer(const NeighborList& pairs, double xi, const P
   double* c = coefficients ? coefficients->data() : nullptr;
   const bool compute = !c || fill;
   const ShareLookup lookup(pairs, compute ? shares : nullptr);
-  PointField u(pairs.n_targets(), 3);
-#pragma omp parallel
-  {
-    std::vector<double> work = lookup.work(pairs);
-#pragma omp for schedule(dynamic, 64)
-    for (int k = 0; k < pairs.n_targets(); ++k) {
-      const int t = pairs.target_order()[k];
-      const bool weighted = lookup.scatter(t, work);
-      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-      pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
-        const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
-        double a, b;  // S^R f = a f + b (r.f) r
-        if (!compute) {
-          a = c[2 * i];
-          b = c[2 * i + 1];
-        } else {
-          const double r2 = r.squaredNorm(), rn = std::sqrt(r2);
-          const StokesletSplitCoeffs k2 = kernel.stokeslet_coeffs(rn);
-          const double w = weighted ? lookup.weight(s, r2, work) : 1.0;
-          a = w * k2.a;
-          b = w * k2.b / r2;
-          if (c) {
-            c[2 * i] = a;
-            c[2 * i + 1] = b;
-          }
-        }
-        acc += a * fs + (b * r.dot(fs)) * r;
-      });
-      if (weighted) lookup.clear(t, work);
-      u.row(t) = acc.transpose();
+  return sum_over_pairs(pairs, lookup, [&](std::int64_t i, int s, const Eigen::Vector3d& r, auto&& weight) {
+    const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
+    double a, b;  // S^R f = a f + b (r.f) r
+    if (!compute) {
+      a = c[2 * i];
+      b = c[2 * i + 1];
+    } else {
+      const double r2 = r.squaredNorm(), rn = std::sqrt(r2);
+      const StokesletSplitCoeffs k2 = kernel.stokeslet_coeffs(rn);
+      const double w = weight(r2);
+      a = w * k2.a;
+      b = w * k2.b / r2;
+      if (c) {
+        c[2 * i] = a;
+        c[2 * i + 1] = b;
+      }
     }
-  }
-  return u;
+    return Eigen::Vector3d(a * fs + (b * r.dot(fs)) * r);
+  });
 }
 
 PointField real_space_double_layer(const NeighborList& pairs, double xi, const PointField& q,
@@ -148,41 +158,27 @@ PointField real_space_double_layer(const NeighborList& pairs, double xi, const P
   double* c = coefficients ? coefficients->data() : nullptr;
   const bool compute = !c || fill;
   const ShareLookup lookup(pairs, compute ? shares : nullptr);
-  PointField u(pairs.n_targets(), 3);
-#pragma omp parallel
-  {
-    std::vector<double> work = lookup.work(pairs);
-#pragma omp for schedule(dynamic, 64)
-    for (int k = 0; k < pairs.n_targets(); ++k) {
-      const int t = pairs.target_order()[k];
-      const bool weighted = lookup.scatter(t, work);
-      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-      pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
-        const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
-        const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
-        double alpha, beta;
-        if (!compute) {
-          alpha = c[2 * i];
-          beta = c[2 * i + 1];
-        } else {
-          const double r2 = r.squaredNorm();
-          const StressletSplitCoeffs k2 = kernel.stresslet_coeffs(std::sqrt(r2));
-          const double w = weighted ? lookup.weight(s, r2, work) : 1.0;
-          alpha = w * k2.alpha;
-          beta = w * k2.beta;
-          if (c) {
-            c[2 * i] = alpha;
-            c[2 * i + 1] = beta;
-          }
-        }
-        const double rq = r.dot(qs), rn = r.dot(ns);
-        acc += (alpha * rq * rn + beta * qs.dot(ns)) * r + beta * (rn * qs + rq * ns);
-      });
-      if (weighted) lookup.clear(t, work);
-      u.row(t) = acc.transpose();
+  return sum_over_pairs(pairs, lookup, [&](std::int64_t i, int s, const Eigen::Vector3d& r, auto&& weight) {
+    const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
+    const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
+    double alpha, beta;
+    if (!compute) {
+      alpha = c[2 * i];
+      beta = c[2 * i + 1];
+    } else {
+      const double r2 = r.squaredNorm();
+      const StressletSplitCoeffs k2 = kernel.stresslet_coeffs(std::sqrt(r2));
+      const double w = weight(r2);
+      alpha = w * k2.alpha;
+      beta = w * k2.beta;
+      if (c) {
+        c[2 * i] = alpha;
+        c[2 * i + 1] = beta;
+      }
     }
-  }
-  return u;
+    const double rq = r.dot(qs), rn = r.dot(ns);
+    return Eigen::Vector3d((alpha * rq * rn + beta * qs.dot(ns)) * r + beta * (rn * qs + rq * ns));
+  });
 }
 
 }  // namespace rbcflow

@@ -45,12 +45,7 @@ PointField SpmePlan::single_layer(const PointField& forces) {
   for (int s = 0; s < n_sources(); ++s)
     for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
   sources_->spread<3>(density_.data(), real_.data());
-  timings_.spreading = seconds_since(t);
-  grid_->forward(3, real_.data(), velocity_.data());
-  timings_.fft = seconds_since(t);
-  grid_->apply_stokeslet(velocity_.data());
-  timings_.influence = seconds_since(t);
-  return transform_and_interpolate();
+  return convolve_stokeslet(t);
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
@@ -78,6 +73,10 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
     grid[3 * g + 1] = b;
     grid[3 * g + 2] = c;
   }
+  return convolve_stokeslet(t);
+}
+
+PointField SpmePlan::convolve_stokeslet(std::chrono::steady_clock::time_point t) {
   timings_.spreading = seconds_since(t);
   grid_->forward(3, real_.data(), velocity_.data());
   timings_.fft = seconds_since(t);

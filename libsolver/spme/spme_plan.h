@@ -10,6 +10,7 @@
 //
 // Products modify the work arrays: one thread at a time per plan (each product is itself
 // OpenMP-parallel). Several plans may share one SpmeGrid.
+#include <chrono>
 #include <memory>
 
 #include "geometry/fftw_util.h"
@@ -48,6 +49,9 @@ class SpmePlan {
   const SpmeTimings& timings() const { return timings_; }
 
  private:
+  // The single layer of the forces spread into real_ (spreading begun at t): transforms,
+  // influence function, interpolation.
+  PointField convolve_stokeslet(std::chrono::steady_clock::time_point t);
   // Backward FFT of velocity_ and interpolation to the targets.
   PointField transform_and_interpolate();
 
