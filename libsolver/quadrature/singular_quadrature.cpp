@@ -273,7 +273,12 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));
       for (std::size_t i = 0; i < corrections.size(); ++i) {
         LayerCorrection* c = corrections[i];
-        if (distance < c->fold_radius_) {
+        // As counted above; should the compiler round the distance differently here, a node
+        // at the fold radius may change sides, never overrun the target's ranges.
+        bool fold = distance < c->fold_radius_;
+        if (fold && folded[i] == c->folded_offsets_[t + 1]) fold = false;
+        if (!fold && kept[i] == c->node_offsets_[t + 1]) fold = true;
+        if (fold) {
           c->folded_[folded[i]++] = {p, eta};
           continue;
         }
