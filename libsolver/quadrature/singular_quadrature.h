@@ -130,8 +130,7 @@ class LayerCorrection {
   // double-layer corrections of the same targets. The node targets of one ring of the grid
   // share one table (their patches differ by a rotation about the axis: a shift in phi by
   // whole Hermite cells); any other target has a table of its own. Every table holds the whole
-  // polar rule, points_per_table points, in one array allocated without initialisation by the
-  // calling thread (the build's threads fill it; they would otherwise fault fresh pages in).
+  // polar rule, points_per_table points, all in one array allocated without initialisation.
   struct PatchStencils {
     std::size_t points_per_table = 0;
     std::unique_ptr<HermiteStencil[]> points;  // table b: [b, b + 1) * points_per_table
@@ -150,8 +149,8 @@ class LayerCorrection {
   std::vector<QuadratureTarget> targets_;
   double fold_radius_;
   std::shared_ptr<const PatchStencils> stencils_;
-  // Per target t, entries [offsets[t], offsets[t + 1]) of each array (one allocation each, made
-  // by the calling thread: the build's threads then touch no fresh memory of their own).
+  // Per target t, entries [offsets[t], offsets[t + 1]) of each array (one allocation each
+  // rather than one per target).
   std::vector<PackedKernel> patch_k_;  // in the order of the target's table
   std::vector<NodeEntry> nodes_;       // nodes in the patch: -eta K w
   std::vector<PatchNode> folded_;      // nodes in the patch left to the caller
