@@ -13,16 +13,27 @@
 // K x K x 2K grid, density components, 1 = measured; all OpenMP threads; plan_ms: the planning).
 //   build/bin/bench_spme --benchmark_filter=NeighborList      tube27's cell-cell lists (argument:
 // the cutoff in thousandths)
+//   build/bin/bench_spme --benchmark_filter=Tube27Cells       the same products on tube27's
+// cells as the solver sees them: 27 red cells of data/cases/tube_27_cells.toml (seed 1), 512
+// nodes each, stored cell by cell, with their normals (argument: OpenMP threads). Clustered and
+// ordered, their pairs cost a fraction of the unit cube's random ones; pair_ns (first_pair_ns:
+// the first product, which computes the coefficients the double layer keeps), node_ns and
+// fft_ns are the costs per pair (as the model counts them: uniform density), per grid node
+// and component, and per component and K log2 K of the cost model (ewald_parameters.cpp).
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <memory>
 #include <mutex>
 #include <random>
 
+#include "geometry/cell_placement.h"
 #include "geometry/fftw_util.h"
+#include "geometry/reference_shapes.h"
+#include "geometry/vessel.h"
 #include "libsolver/spme/ewald_plan.h"
 
 using namespace rbcflow;
@@ -45,13 +56,47 @@ double process_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-void run_product(benchmark::State& state, EwaldKernel kernel) {
-  const int n = static_cast<int>(state.range(0));
+// Points, unit normals and the box of a product's benchmark.
+struct ProductPoints {
+  PeriodicBox box;
+  PointField x, normals;
+};
+
+ProductPoints unit_cube_points(int n) {
+  return {PeriodicBox(Eigen::Vector3d::Ones()), random_field(n, 1, true),
+          random_field(n, 3, false).rowwise().normalized()};
+}
+
+// tube27's initial cells (bench/step_cases.cpp tube_cells(27)): nodes of the N = 16 Gauss grid.
+ProductPoints tube27_cell_points() {
+  const Eigen::Vector3d side(6.6, 6.6, 13.33);
+  const VesselMesh vessel = tube(TubeSpec{6.0, 2, side, 0.25});
+  PlacementSpec placement;
+  placement.box = side;
+  placement.count = 27;
+  placement.gap = 0.05;
+  placement.seed = 1;
+  const SHSurface rbc = make_biconcave(16);
+  const SHTransform transform = SHTransform::gauss(16);
+  ProductPoints p{PeriodicBox(side), PointField(27 * 512, 3), PointField(27 * 512, 3)};
+  int row = 0;
+  for (const SHSurface& cell : placed_surfaces(rbc, place_cells(rbc, placement, &vessel).cells)) {
+    const SurfaceGeometry g = cell.geometry(transform);
+    p.x.middleRows(row, g.size()) = g.x;
+    p.normals.middleRows(row, g.size()) = g.normal;
+    row += g.size();
+  }
+  return p;
+}
+
+void run_product(benchmark::State& state, EwaldKernel kernel, const ProductPoints& points, int threads_arg) {
+  const int n = static_cast<int>(points.x.rows());
   const int threads = omp_get_max_threads();
-  omp_set_num_threads(static_cast<int>(state.range(1)));
-  const PeriodicBox box(Eigen::Vector3d::Ones());
-  const PointField x = random_field(n, 1, true), f = random_field(n, 2, false);
-  const PointField normals = random_field(n, 3, false).rowwise().normalized();
+  omp_set_num_threads(static_cast<int>(state.range(threads_arg)));
+  const PeriodicBox& box = points.box;
+  const PointField& x = points.x;
+  const PointField& normals = points.normals;
+  const PointField f = random_field(n, 2, false);
   const EwaldChoice choice = choose_ewald_parameters(kernel, 1e-6, box, n);
 
   const auto start = std::chrono::steady_clock::now();
@@ -61,12 +106,14 @@ void run_product(benchmark::State& state, EwaldKernel kernel) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   EwaldTimings total;
+  double real_first = -1.0;  // the first product's real-space sum (the double layer's pair coefficients)
   const double cpu_start = process_cpu_seconds();
   for (auto _ : state) {
     PointField u =
         kernel == EwaldKernel::stokeslet ? plan.single_layer(f) : plan.double_layer(f, normals);
     benchmark::DoNotOptimize(u.data());
     const EwaldTimings& t = plan.timings();
+    if (real_first < 0.0) real_first = t.real_space;
     total.real_space += t.real_space;
     total.smooth.spreading += t.smooth.spreading;
     total.smooth.fft += t.smooth.fft;
@@ -85,13 +132,39 @@ void run_product(benchmark::State& state, EwaldKernel kernel) {
   state.counters["p"] = choice.parameters.order;
   state.counters["neighbours"] = choice.neighbours_per_target;
   state.counters["xi"] = choice.parameters.xi;
+  // The cost model's units (ewald_parameters.cpp modelled_seconds), CPU time of one thread.
+  const EwaldParameters& p = choice.parameters;
+  const double in = kernel == EwaldKernel::stokeslet ? 3.0 : 6.0, nodes = std::pow(p.order, 3.0);
+  const double grid_points = static_cast<double>(p.grid[0]) * p.grid[1] * p.grid[2];
+  const double per_thread = static_cast<double>(state.range(threads_arg));
+  const double model_pairs = n * choice.neighbours_per_target;
+  state.counters["pair_ns"] = per_thread * 1e6 * state.counters["real_ms"] / model_pairs;
+  state.counters["first_pair_ns"] = per_thread * 1e9 * real_first / model_pairs;
+  state.counters["node_ns"] = per_thread * 1e6 * (state.counters["spread_ms"] + state.counters["interp_ms"]) /
+                              (nodes * (in + 3.0) * n);
+  state.counters["fft_ns"] = per_thread * 1e6 * state.counters["fft_ms"] / ((in + 3.0) * grid_points * std::log2(grid_points));
   omp_set_num_threads(threads);
 }
 
-void BM_SingleLayer(benchmark::State& state) { run_product(state, EwaldKernel::stokeslet); }
-void BM_DoubleLayer(benchmark::State& state) { run_product(state, EwaldKernel::stresslet); }
-void BM_SingleLayerMillion(benchmark::State& state) { run_product(state, EwaldKernel::stokeslet); }
-void BM_DoubleLayerMillion(benchmark::State& state) { run_product(state, EwaldKernel::stresslet); }
+void BM_SingleLayer(benchmark::State& state) {
+  run_product(state, EwaldKernel::stokeslet, unit_cube_points(static_cast<int>(state.range(0))), 1);
+}
+void BM_DoubleLayer(benchmark::State& state) {
+  run_product(state, EwaldKernel::stresslet, unit_cube_points(static_cast<int>(state.range(0))), 1);
+}
+void BM_SingleLayerMillion(benchmark::State& state) { BM_SingleLayer(state); }
+void BM_DoubleLayerMillion(benchmark::State& state) { BM_DoubleLayer(state); }
+
+const ProductPoints& tube27_cells() {
+  static const ProductPoints points = tube27_cell_points();
+  return points;
+}
+void BM_Tube27CellsSingleLayer(benchmark::State& state) {
+  run_product(state, EwaldKernel::stokeslet, tube27_cells(), 0);
+}
+void BM_Tube27CellsDoubleLayer(benchmark::State& state) {
+  run_product(state, EwaldKernel::stresslet, tube27_cells(), 0);
+}
 
 // Forward transform of `components` interleaved grids and the backward transform of 3, as one
 // SPME product runs them; the first (planning) call is outside the timed loop.
@@ -164,6 +237,8 @@ BENCHMARK(BM_NeighborList)
 
 BENCHMARK(BM_SingleLayer)->Apply(small_sizes);
 BENCHMARK(BM_DoubleLayer)->Apply(small_sizes);
+BENCHMARK(BM_Tube27CellsSingleLayer)->Arg(1)->Arg(2)->Repetitions(3)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Tube27CellsDoubleLayer)->Arg(1)->Arg(2)->Repetitions(3)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SingleLayerMillion)->Apply(million);
 BENCHMARK(BM_DoubleLayerMillion)->Apply(million);
 

@@ -36,7 +36,7 @@ struct CellLayersTimings {
 // every GMRES product of (10) in a step (7-10 for lambda = 5), and the real-space coefficients
 // of each pair are computed in the first product and read in the others (ewald_plan.h):
 // measured on 13,824 random points in tube27's box (1 thread), 25-30 ns a pair to compute and
-// 5 ns to read, so over a step's products about a fifth of the chooser's 55 ns. The choice
+// 5 ns to read, so over a step's products about a fifth of computing them. The choice
 // then moves to a larger cutoff and a coarser grid (tube27: cell products 3.9 -> 3.0 s per
 // step), within the pairs a plan keeps.
 inline constexpr RealSpaceUse kDoubleLayerRealSpace{0.2, static_cast<double>(kMaxKeptPairs)};

@@ -19,16 +19,21 @@ constexpr int kMaxGridSide = 2048;
 constexpr double kMaxGridPoints = 67108864.0;
 constexpr double kMaxPairs = 1e9;
 
-// Costs of one product measured on the 2-core development machine, 1 thread, under load
-// (bench/bench_spme.cpp stages, minimum of 5 products, 2e4 to 1e5 random points, p = 6 .. 10):
-// seconds per real-space pair, per grid node and density component of spreading or
-// interpolation, per component of a transform of K points per K log2 K (FFTW_ESTIMATE plans,
-// the default; FFTW_MEASURE plans run ~1.5x faster), per complex mode of the influence function.
+// Costs of one product measured on the 2-core development machine, 1 thread, on the points
+// the solver sums over: the nodes of tube27's 27 red cells, stored cell by cell
+// (`bench_spme --benchmark_filter=Tube27Cells`, medians of 3): seconds per real-space pair (as
+// counted here, at uniform density; the stresslet's is the first product's, which computes
+// the coefficients its plan keeps), per grid node and density component of spreading or
+// interpolation, per component of a transform of K points per K log2 K (FFTW_ESTIMATE plans),
+// per complex mode of the influence function. Clustered and ordered points cost a quarter of
+// random ones in the unit cube (`--benchmark_filter=Layer/100000/1`: 20-23 ns a pair, 0.45-0.5
+// ns a node), and the transforms the same, so the former constants, measured on random points,
+// chose too fine grids for cells (tube27: 84 x 84 x 168 for both layers).
 struct CostModel {
   double pair, node, fft, mode;
 };
-constexpr CostModel kCostStokeslet{40e-9, 0.75e-9, 0.5e-9, 5e-9};
-constexpr CostModel kCostStresslet{55e-9, 0.9e-9, 0.5e-9, 12e-9};
+constexpr CostModel kCostStokeslet{8e-9, 0.3e-9, 0.35e-9, 2.5e-9};
+constexpr CostModel kCostStresslet{40e-9, 0.35e-9, 0.37e-9, 15e-9};
 
 bool is_fft_friendly(int n) {
   for (int f : {2, 3, 5, 7})
