@@ -34,7 +34,7 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, con
   const Eigen::Vector3d u0(std::sin(theta0) * std::cos(phi0), std::sin(theta0) * std::sin(phi0), std::cos(theta0));
   const Eigen::Vector3d e1(-std::sin(phi0), std::cos(phi0), 0.0), e2 = u0.cross(e1);
 
-  std::vector<double> rho(n_rho), w_rho(n_rho);
+  std::vector<double> rho(n_rho), w_rho(n_rho), cos_rho(n_rho), sin_rho(n_rho);
   const double mu = delta > 0 ? std::asinh(rho1 / delta) : 0.0;
   for (int a = 0; a < n_rho; ++a) {
     // Gauss nodes on [-1, 1] are x = cos(theta): ascending theta gives descending x.
@@ -47,6 +47,10 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, con
       rho[a] = 0.5 * rho1 * (s + 1.0);
       w_rho[a] = 0.5 * rho1 * g.weights[a];
     }
+    cos_rho[a] = std::cos(rho[a]);
+    sin_rho[a] = std::sin(rho[a]);
+    // The radial factor of the weight: the mask eta (eq. 31) times the sphere's area element.
+    w_rho[a] *= patch_mask(rho[a], rho1) * sin_rho[a];
   }
   std::vector<PatchPoint> points;
   points.reserve(static_cast<std::size_t>(n_rho) * n_varphi);
@@ -55,11 +59,10 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, con
     const double varphi = w_varphi * (b + 0.5);
     const Eigen::Vector3d dir = std::cos(varphi) * e1 + std::sin(varphi) * e2;
     for (int a = 0; a < n_rho; ++a) {
-      const Eigen::Vector3d u = std::cos(rho[a]) * u0 + std::sin(rho[a]) * dir;
+      const Eigen::Vector3d u = cos_rho[a] * u0 + sin_rho[a] * dir;
       double phi = std::atan2(u.y(), u.x());
       if (phi < 0) phi += 2 * std::numbers::pi;
-      points.push_back({std::acos(std::clamp(u.z(), -1.0, 1.0)), phi, rho[a],
-                        patch_mask(rho[a], rho1) * std::sin(rho[a]) * w_rho[a] * w_varphi});
+      points.push_back({std::acos(std::clamp(u.z(), -1.0, 1.0)), phi, rho[a], w_rho[a] * w_varphi});
     }
   }
   return points;
