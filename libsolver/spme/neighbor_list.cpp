@@ -1,7 +1,5 @@
 #include "neighbor_list.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -103,6 +101,7 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
     ++target_start[target_cell[t] + 1];
   }
   for (int c = 0; c < n_cells; ++c) target_start[c + 1] += target_start[c];
+  const std::vector<int> target_begin = target_start;  // sorted targets of cell c: [begin[c], begin[c + 1])
   target_order_.resize(nt);
   rank_.resize(nt);
   targets_.resize(3 * static_cast<std::size_t>(nt));
@@ -114,19 +113,30 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
       targets_[3 * static_cast<std::size_t>(i) + d] = wrapped_targets[t][d];
   }
 
-  // Visits every (source, image) that can lie within the cutoff of the target sorted at t.
+  // The targets of one cell share the cells they search: for each cell holding targets, the
+  // sources of every cell (and image) within the cutoff of it are gathered once, shifted, into
+  // a contiguous list that each of its targets scans. The pairs of a target come in the order
+  // of a search cell by cell (offsets o0, o1, o2 ascending, sources in sorted order), and
+  // skipping the cells that cannot hold a pair changes none of them.
   const double rc2 = cutoff * cutoff, eps2 = coincidence_ * coincidence_;
   const double skip2 = rc2 * (1.0 + 1e-10);  // a cell this far or farther holds no pair, whatever the rounding
-  const auto visit = [&](int t, auto&& emit) {
-    const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
-    const Eigen::Vector3d x(xt[0], xt[1], xt[2]);
-    std::array<int, 3> home{};
-    for (int d = 0; d < 3; ++d) home[d] = cells.cell_of(x, d);
-    // Squared distance along d from the target to the cell at offset o: cells whose box lies
-    // beyond the cutoff hold no pair and are skipped.
+  struct Candidates {
+    std::vector<double> x, y, z;
+    std::vector<int> source, image;
+    void clear() {
+      for (std::vector<double>* v : {&x, &y, &z}) v->clear();
+      source.clear();
+      image.clear();
+    }
+  };
+  const auto gather = [&](int home_cell, Candidates& c) {
+    c.clear();
+    const std::array<int, 3> home{home_cell / (cells.n[1] * cells.n[2]), (home_cell / cells.n[2]) % cells.n[1],
+                                  home_cell % cells.n[2]};
+    // Squared distance along d between the home cell and the cell at offset o.
     const auto gap2 = [&](int d, int o) {
-      const double g = o > 0 ? (home[d] + o) * cells.side[d] - x[d] : o < 0 ? x[d] - (home[d] + o + 1) * cells.side[d] : 0.0;
-      return g > 0.0 ? g * g : 0.0;
+      const double g = (std::abs(o) - 1) * cells.side[d];
+      return o != 0 && g > 0.0 ? g * g : 0.0;
     };
     for (int o0 = -cells.reach[0]; o0 <= cells.reach[0]; ++o0) {
       const int u0 = home[0] + o0, n0 = floor_div(u0, cells.n[0]), c0 = u0 - n0 * cells.n[0];
@@ -139,40 +149,72 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
         for (int o2 = -cells.reach[2]; o2 <= cells.reach[2]; ++o2) {
           if (g01 + gap2(2, o2) >= skip2) continue;
           const int u2 = home[2] + o2, n2 = floor_div(u2, cells.n[2]), c2 = u2 - n2 * cells.n[2];
-          const int c = (c0 * cells.n[1] + c1) * cells.n[2] + c2;
+          const int cell_index = (c0 * cells.n[1] + c1) * cells.n[2] + c2;
           const int image = cells.image_id(n0, n1, n2);
           const double* shift = &image_shifts_[3 * static_cast<std::size_t>(image)];
-          for (int i = cell_start[c]; i < cell_start[c + 1]; ++i) {
+          for (int i = cell_start[cell_index]; i < cell_start[cell_index + 1]; ++i) {
             const double* xs = &sources_[3 * static_cast<std::size_t>(i)];
-            const double r0 = xs[0] + shift[0] - xt[0], r1 = xs[1] + shift[1] - xt[1],
-                         r2 = xs[2] + shift[2] - xt[2];
-            const double d2 = r0 * r0 + r1 * r1 + r2 * r2;
-            if (d2 < rc2 && d2 > eps2) emit(i, image);
+            c.x.push_back(xs[0] + shift[0]);
+            c.y.push_back(xs[1] + shift[1]);
+            c.z.push_back(xs[2] + shift[2]);
+            c.source.push_back(i);
+            c.image.push_back(image);
           }
         }
       }
     }
   };
+  // Runs emit(sorted target, candidate index, candidates) for every pair, a cell of targets
+  // at a time (in parallel).
+  const auto for_each_pair_by_cell = [&](auto&& emit) {
+#pragma omp parallel
+    {
+      Candidates c;
+#pragma omp for schedule(dynamic, 4)
+      for (int home = 0; home < n_cells; ++home) {
+        if (target_begin[home] == target_begin[home + 1]) continue;
+        gather(home, c);
+        const int m = static_cast<int>(c.source.size());
+        for (int t = target_begin[home]; t < target_begin[home + 1]; ++t) {
+          const double* xt = &targets_[3 * static_cast<std::size_t>(t)];
+          emit(t, m, c, xt);
+        }
+      }
+    }
+  };
 
+  // Whether a candidate is a pair is decided without branches (about half of them are not:
+  // a branch per candidate mispredicts), so that the count vectorises.
+  const auto is_pair = [rc2, eps2](const Candidates& c, int k, const double* xt) {
+    const double r0 = c.x[k] - xt[0], r1 = c.y[k] - xt[1], r2 = c.z[k] - xt[2];
+    const double d2 = r0 * r0 + r1 * r1 + r2 * r2;
+    return static_cast<int>(d2 < rc2) & static_cast<int>(d2 > eps2);
+  };
   offsets_.assign(nt + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int t = 0; t < nt; ++t) {
-    std::int64_t count = 0;
-    visit(t, [&](int, int) { ++count; });
+  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
+    int count = 0;
+#pragma omp simd reduction(+ : count)
+    for (int k = 0; k < m; ++k) count += is_pair(c, k, xt);
     offsets_[t + 1] = count;
-  }
+  });
   for (int t = 0; t < nt; ++t) offsets_[t + 1] += offsets_[t];
   pair_source_.resize(offsets_.back());
   pair_image_.resize(offsets_.back());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int t = 0; t < nt; ++t) {
-    std::int64_t k = offsets_[t];
-    visit(t, [&](int i, int image) {
-      pair_source_[k] = i;
-      pair_image_[k] = static_cast<std::uint16_t>(image);
-      ++k;
-    });
-  }
+  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
+    // The candidates that are pairs, compacted without branches, then stored in order.
+    thread_local std::vector<int> listed;
+    listed.resize(m + 1);
+    int n = 0;
+    for (int k = 0; k < m; ++k) {
+      listed[n] = k;
+      n += is_pair(c, k, xt);
+    }
+    std::int64_t out = offsets_[t];
+    for (int i = 0; i < n; ++i, ++out) {
+      pair_source_[out] = c.source[listed[i]];
+      pair_image_[out] = static_cast<std::uint16_t>(c.image[listed[i]]);
+    }
+  });
 }
 
 }  // namespace rbcflow
