@@ -136,13 +136,13 @@ void run_product(benchmark::State& state, EwaldKernel kernel, const ProductPoint
   const EwaldParameters& p = choice.parameters;
   const double in = kernel == EwaldKernel::stokeslet ? 3.0 : 6.0, nodes = std::pow(p.order, 3.0);
   const double grid_points = static_cast<double>(p.grid[0]) * p.grid[1] * p.grid[2];
-  const double per_thread = static_cast<double>(state.range(threads_arg));
+  const double threads_used = static_cast<double>(state.range(threads_arg));
   const double model_pairs = n * choice.neighbours_per_target;
-  state.counters["pair_ns"] = per_thread * 1e6 * state.counters["real_ms"] / model_pairs;
-  state.counters["first_pair_ns"] = per_thread * 1e9 * real_first / model_pairs;
-  state.counters["node_ns"] = per_thread * 1e6 * (state.counters["spread_ms"] + state.counters["interp_ms"]) /
+  state.counters["pair_ns"] = threads_used * 1e6 * state.counters["real_ms"] / model_pairs;
+  state.counters["first_pair_ns"] = threads_used * 1e9 * real_first / model_pairs;
+  state.counters["node_ns"] = threads_used * 1e6 * (state.counters["spread_ms"] + state.counters["interp_ms"]) /
                               (nodes * (in + 3.0) * n);
-  state.counters["fft_ns"] = per_thread * 1e6 * state.counters["fft_ms"] / ((in + 3.0) * grid_points * std::log2(grid_points));
+  state.counters["fft_ns"] = threads_used * 1e6 * state.counters["fft_ms"] / ((in + 3.0) * grid_points * std::log2(grid_points));
   omp_set_num_threads(threads);
 }
 
