@@ -1,6 +1,7 @@
 #include "cell_stepper.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -56,20 +57,33 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
 
 namespace {
 
-// The GMRES initial guess 2 x^{n-1} - x^{n-2}: O(dt^2) from the solution where x^{n-1} alone is
-// O(dt), so a step needs fewer iterations to the same tolerance.
+// The GMRES initial guess: the polynomial through the last solutions x^{n-1}, x^{n-2}, x^{n-3}
+// (newest first), evaluated one step on. With k of them it is O(dt^k) from the solution, so a
+// step needs fewer iterations to the same tolerance: x^{n-1} (k = 1), 2 x^{n-1} - x^{n-2}
+// (k = 2), 3 x^{n-1} - 3 x^{n-2} + x^{n-3} (k = 3). The history ends at the first empty or
+// mismatched entry (the first steps, a state restored without it). On tube27 the quadratic
+// takes 3-4 cell iterations per step where the linear took 6; a cubic (k = 4) took 4
+// (docs/performance.md, session 17).
 template <typename Matrix>
-Matrix extrapolated(const Matrix& previous, const Matrix& older) {
-  if (older.size() == 0 || older.rows() != previous.rows()) return previous;
-  return 2 * previous - older;
+Matrix extrapolated(const std::array<const Matrix*, 3>& history) {
+  int k = 0;
+  while (k < 3 && history[k]->size() > 0 && history[k]->rows() == history[0]->rows()) ++k;
+  switch (k) {
+    case 0: return Matrix();
+    case 1: return *history[0];
+    case 2: return 2 * *history[0] - *history[1];
+    default: return 3 * (*history[0] - *history[1]) + *history[2];
+  }
 }
 
 }  // namespace
 
 FlowSolution CellStepper::solve() const {
   const Eigen::MatrixXd& previous_velocity = state_.previous_velocity;
-  const Eigen::MatrixXd velocity_guess = extrapolated(previous_velocity, state_.older_velocity);
-  const PointField force_guess = extrapolated(state_.previous_wall_force, state_.older_wall_force);
+  const Eigen::MatrixXd velocity_guess =
+      extrapolated<Eigen::MatrixXd>({&previous_velocity, &state_.older_velocity, &state_.oldest_velocity});
+  const PointField force_guess =
+      extrapolated<PointField>({&state_.previous_wall_force, &state_.older_wall_force, &state_.oldest_wall_force});
   const int nc = static_cast<int>(cells_.size());
   const int np = points_per_cell();
   const double lambda = options_.viscosity_ratio;
@@ -253,6 +267,8 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.mean_velocity = s.mean_velocity;
   report.pressure_gradient = s.pressure_gradient;
   if (!cells_.empty()) move_cells(s, report);
+  state_.oldest_velocity = std::move(state_.older_velocity);
+  state_.oldest_wall_force = std::move(state_.older_wall_force);
   state_.older_velocity = std::move(state_.previous_velocity);
   state_.older_wall_force = std::move(state_.previous_wall_force);
   state_.previous_velocity = s.velocity;
@@ -274,11 +290,11 @@ void CellStepper::restore(const StepperState& s) {
     if (s.shapes[c].order() != cells_[c].shape.coeffs().order())
       throw std::invalid_argument("restore: cell " + std::to_string(c) + " has another spherical-harmonic order");
   }
-  for (const Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity}) {
+  for (const Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity}) {
     if (u->size() && (u->rows() != static_cast<long>(nc) * np || u->cols() != 3))
       throw std::invalid_argument("restore: a previous velocity does not fit the cells");
   }
-  for (const PointField* f : {&s.previous_wall_force, &s.older_wall_force}) {
+  for (const PointField* f : {&s.previous_wall_force, &s.older_wall_force, &s.oldest_wall_force}) {
     if (f->size() && (!wall_ || f->rows() != wall_->elements().num_nodes()))
       throw std::invalid_argument("restore: a previous wall force does not fit the wall");
   }
