@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "libsolver/quadrature/batch_math.h"
 
 namespace rbcflow {
 
@@ -52,18 +53,23 @@ std::vector<PatchPoint> polar_patch(double theta0, double phi0, double rho1, con
     // The radial factor of the weight: the mask eta (eq. 31) times the sphere's area element.
     w_rho[a] *= patch_mask(rho[a], rho1) * sin_rho[a];
   }
-  std::vector<PatchPoint> points;
-  points.reserve(static_cast<std::size_t>(n_rho) * n_varphi);
+  // The points' directions u, then their parameters theta = acos(u_z), phi = atan2(u_y, u_x)
+  // a whole patch at a time (batch_math.h).
+  const std::size_t n = static_cast<std::size_t>(n_rho) * n_varphi;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> u(n, 3);
   const double w_varphi = 2.0 * std::numbers::pi / n_varphi;
   for (int b = 0; b < n_varphi; ++b) {
     const double varphi = w_varphi * (b + 0.5);
     const Eigen::Vector3d dir = std::cos(varphi) * e1 + std::sin(varphi) * e2;
-    for (int a = 0; a < n_rho; ++a) {
-      const Eigen::Vector3d u = cos_rho[a] * u0 + sin_rho[a] * dir;
-      double phi = std::atan2(u.y(), u.x());
-      if (phi < 0) phi += 2 * std::numbers::pi;
-      points.push_back({std::acos(std::clamp(u.z(), -1.0, 1.0)), phi, rho[a], w_rho[a] * w_varphi});
-    }
+    for (int a = 0; a < n_rho; ++a) u.row(b * n_rho + a) = cos_rho[a] * u0 + sin_rho[a] * dir;
+  }
+  std::vector<double> theta(n), phi(n);
+  batch_atan2(u.col(1).data(), u.col(0).data(), phi.data(), n);
+  batch_acos(u.col(2).data(), theta.data(), n);
+  std::vector<PatchPoint> points(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    const int a = static_cast<int>(q % n_rho);
+    points[q] = {theta[q], phi[q] < 0 ? phi[q] + 2 * std::numbers::pi : phi[q], rho[a], w_rho[a] * w_varphi};
   }
   return points;
 }

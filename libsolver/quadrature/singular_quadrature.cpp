@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "libsolver/quadrature/batch_math.h"
 #include "libsolver/quadrature/polar_patch.h"
 
 namespace rbcflow {
@@ -176,28 +177,41 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   // stencils for the node targets of a ring): table b's are [b * grid.size(), + count[b]).
   const auto patch_nodes = std::make_unique_for_overwrite<PatchNode[]>(static_cast<std::size_t>(n_tables) * grid.size());
   std::vector<int> patch_node_count(n_tables, 0);
-#pragma omp parallel for schedule(dynamic, 4)
-  for (int b = 0; b < n_tables; ++b) {
-    const TableCentre& centre = centres[b];
-    const Eigen::Vector3d uc = unit_direction(centre.theta, centre.phi);
-    PatchNode* listed = patch_nodes.get() + static_cast<std::size_t>(b) * grid.size();
-    for (int p = 0; p < grid.size(); ++p) {
-      const Eigen::Vector3d up = u.row(p).transpose();
-      const double cos_rho = uc.dot(up);
-      if (cos_rho <= cos_rho1) continue;
-      const double rho = std::atan2(uc.cross(up).norm(), cos_rho);
-      if (rho < rho1) listed[patch_node_count[b]++] = {p, patch_mask(rho, rho1)};
-    }
-    double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
-    if (centre.target >= 0 && targets[centre.target].distance > 0) {
-      Eigen::Vector3d xc, jc;
-      cell.geometry_at(interp.stencil(centre.theta, centre.phi), xc, jc);
-      delta = targets[centre.target].distance / std::sqrt(jc.norm());
-    }
-    const std::vector<PatchPoint> patch = polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta);
-    for (std::size_t q = 0; q < per_table; ++q) {
-      stencils->points[b * per_table + q] = interp.stencil(patch[q].theta, patch[q].phi);
-      weights[b * per_table + q] = patch[q].weight;
+#pragma omp parallel
+  {
+    // The candidates of one table (nodes with cos rho > cos rho_1): node, sin and cos of rho,
+    // then rho and eta, computed a table at a time (batch_math.h).
+    std::vector<int> candidate(grid.size());
+    std::vector<double> sin_rho(grid.size()), cos_rho(grid.size()), rho(grid.size()), eta(grid.size());
+#pragma omp for schedule(dynamic, 4)
+    for (int b = 0; b < n_tables; ++b) {
+      const TableCentre& centre = centres[b];
+      const Eigen::Vector3d uc = unit_direction(centre.theta, centre.phi);
+      PatchNode* listed = patch_nodes.get() + static_cast<std::size_t>(b) * grid.size();
+      std::size_t n = 0;
+      for (int p = 0; p < grid.size(); ++p) {
+        const Eigen::Vector3d up = u.row(p).transpose();
+        const double c = uc.dot(up);
+        if (c <= cos_rho1) continue;
+        candidate[n] = p;
+        cos_rho[n] = c;
+        sin_rho[n++] = uc.cross(up).norm();
+      }
+      batch_atan2(sin_rho.data(), cos_rho.data(), rho.data(), n);
+      batch_patch_mask(rho.data(), rho1, eta.data(), n);
+      for (std::size_t k = 0; k < n; ++k)
+        if (rho[k] < rho1) listed[patch_node_count[b]++] = {candidate[k], eta[k]};
+      double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
+      if (centre.target >= 0 && targets[centre.target].distance > 0) {
+        Eigen::Vector3d xc, jc;
+        cell.geometry_at(interp.stencil(centre.theta, centre.phi), xc, jc);
+        delta = targets[centre.target].distance / std::sqrt(jc.norm());
+      }
+      const std::vector<PatchPoint> patch = polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta);
+      for (std::size_t q = 0; q < per_table; ++q) {
+        stencils->points[b * per_table + q] = interp.stencil(patch[q].theta, patch[q].phi);
+        weights[b * per_table + q] = patch[q].weight;
+      }
     }
   }
   // The patch nodes of target t (its table's, shifted with its stencils), but its own node.
