@@ -99,13 +99,12 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
   w.put("cells/initial_volume", Eigen::Map<const Eigen::VectorXd>(state.volume0.data(), state.volume0.size()));
   w.put("cells/initial_area", Eigen::Map<const Eigen::VectorXd>(state.area0.data(), state.area0.size()));
   // The multistep history and the staggered coupling, U^{n-1} and F^{n-1}; the GMRES guesses'
-  // U^{n-2}, U^{n-3}, F^{n-2} and F^{n-3}.
+  // U^{n-2}, U^{n-3} and F^{n-2}.
   if (state.previous_velocity.size()) w.put("cells/previous_velocity", state.previous_velocity);
   if (state.older_velocity.size()) w.put("cells/older_velocity", state.older_velocity);
   if (state.oldest_velocity.size()) w.put("cells/oldest_velocity", state.oldest_velocity);
   if (state.previous_wall_force.size()) w.put("wall/previous_force", Eigen::MatrixXd(state.previous_wall_force));
   if (state.older_wall_force.size()) w.put("wall/older_force", Eigen::MatrixXd(state.older_wall_force));
-  if (state.oldest_wall_force.size()) w.put("wall/oldest_force", Eigen::MatrixXd(state.oldest_wall_force));
   if (const WallCoupling* wall = stepper.wall()) {
     w.put("wall/points", wall->elements().wall.surface.points);
     w.put("wall/triangles", wall->elements().wall.surface.triangles);
@@ -144,7 +143,6 @@ void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem:
       fail("its wall does not match the case's vessel as meshed now");
     if (k.has("wall/previous_force")) s.previous_wall_force = k.matrix("wall/previous_force");
     if (k.has("wall/older_force")) s.older_wall_force = k.matrix("wall/older_force");
-    if (k.has("wall/oldest_force")) s.oldest_wall_force = k.matrix("wall/oldest_force");
   }
   try {
     stepper.restore(s);

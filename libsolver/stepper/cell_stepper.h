@@ -85,9 +85,8 @@ struct StepReport {
 };
 
 // Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}
-// (the staggered coupling and AB2 use them), and U^{n-2}, U^{n-3}, F^{n-2}, F^{n-3}: the GMRES
-// initial guesses are the quadratic extrapolations 3 U^{n-1} - 3 U^{n-2} + U^{n-3} and the same
-// for F.
+// (the staggered coupling and AB2 use them), and U^{n-2}, U^{n-3}, F^{n-2}: the GMRES initial
+// guesses 3 U^{n-1} - 3 U^{n-2} + U^{n-3} and 2 F^{n-1} - F^{n-2}.
 struct StepperState {
   double time = 0.0;
   long steps = 0;
@@ -97,7 +96,6 @@ struct StepperState {
   Eigen::MatrixXd older_velocity;     // empty before the second step
   PointField older_wall_force;        // empty before the second step or without a wall
   Eigen::MatrixXd oldest_velocity;    // empty before the third step
-  PointField oldest_wall_force;       // empty before the third step or without a wall
   std::vector<double> volume0, area0;
 };
 
