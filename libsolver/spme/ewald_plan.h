@@ -22,7 +22,7 @@
 // xi-independent regular part (the double layer needs nothing: lim T^R - T = 0).
 //
 // The real-space kernel coefficients of every pair are kept from the first product of each
-// layer (real_space_sum.h; up to 5e7 pairs), so later products cost a few flops per pair.
+// layer (real_space_sum.h; up to 2e8 pairs), so later products cost a few flops per pair.
 // Products modify work arrays: one thread at a time per plan; each product is OpenMP-parallel.
 #include <cstdint>
 #include <memory>
@@ -36,8 +36,11 @@
 
 namespace rbcflow {
 
-// Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 0.8 GB).
-inline constexpr std::int64_t kMaxKeptPairs = 50'000'000;
+// Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 3.2 GB). A
+// bound of 5e7 dropped the cells' double-layer coefficients at 125 red cells (hematocrit 0.3):
+// keeping them costs 0.8 GB there (peak 11.7 -> 12.5 GB, 94 -> 100 MB per cell) and saves
+// 40% of the cell products (docs/performance.md, session 17).
+inline constexpr std::int64_t kMaxKeptPairs = 200'000'000;
 
 struct EwaldTimings {
   double real_space = 0.0;
