@@ -1,8 +1,9 @@
 // The vectorised transcendental functions of the correction builds against the scalar ones of
 // <cmath>: glibc documents libmvec's functions to 4 ulp, so atan2 and acos must agree to
-// 4 DBL_EPSILON relative (the scalar ones are within 1 ulp of exact). The mask composes two exponentials, exp(2 e^{-1/t} / (t - 1)), whose
-// exponent reaches -10^3 before eta underflows, so its relative error grows with it; as a
-// weight in [0, 1] it must agree to 1e-14 absolutely, far below any quadrature error it feeds.
+// 4 DBL_EPSILON relative (the scalar ones are within 1 ulp of exact). The mask composes two
+// exponentials, exp(2 e^{-1/t} / (t - 1)), whose exponent reaches -10^3 before eta underflows,
+// so its relative error grows with it; as a weight in [0, 1] it must agree to 1e-14
+// absolutely, far below any quadrature error it feeds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
