@@ -17,7 +17,7 @@ SHSurface surface_from_map(int order, const SphereMap& map);
 SHSurface make_sphere(int order, double radius = 1.0);
 SHSurface make_ellipsoid(int order, const Eigen::Vector3d& semi_axes);
 
-// Evans & Fung (1972) biconcave disc, symmetry axis along z (REFERENCES.md section 6):
+// Evans & Fung (Microvasc. Res. 4, 1972) biconcave disc, symmetry axis along z:
 // z(r) = +-(1/2) R0 sqrt(1 - s^2) (c0 + c1 s^2 + c2 s^4), s = r / R0, scaled so that its
 // volume is that of the unit sphere (equivalent radius a = 1). A polynomial of degree 5 in u:
 // exact for N >= 6.

@@ -1,6 +1,6 @@
 #pragma once
 // Hasimoto's Ewald split of the Stokeslet and stresslet (paper eq. 24-28, written as in
-// REFERENCES.md section 2 with the splitting parameter xi; the paper's alpha = pi / xi^2):
+// docs/references.md section 2 with the splitting parameter xi; the paper's alpha = pi / xi^2):
 //   G^per(r) = sum_p S^R(r + p L) + (1/V) sum_{k != 0} S^F(k) e^{i k.r},
 //   T^per(r) = sum_p T^R(r + p L) + (1/V) sum_{k != 0} T^F(k) e^{i k.r},
 // k = 2 pi (n1/L1, n2/L2, n3/L3), r = x - x0 (source minus target, as in stokes_kernels.h).

@@ -1,5 +1,5 @@
 #pragma once
-// Free-space Stokes kernels of eq. (2), in the convention of REFERENCES.md:
+// Free-space Stokes kernels of eq. (2), in the convention of docs/references.md:
 //   Stokeslet  G_ij(r) = delta_ij / r + r_i r_j / r^3     (u = G f / (8 pi mu)),
 //   stresslet  T_ijk(r) = -6 r_i r_j r_k / r^5,
 // with r = x - x0, x the source (integration) point and x0 the target. G is even in r and T odd,

@@ -23,7 +23,7 @@ class MembraneLaw {
   virtual StrainEnergy energy(double I1, double I2) const = 0;
   virtual std::string name() const = 0;
   // Small-strain surface shear and area-dilatation moduli (G_s, K_s) of the law, in the
-  // convention of REFERENCES.md section 4: W ~ (K_s / 2)(tr e)^2 + G_s e_dev : e_dev.
+  // convention W ~ (K_s / 2)(tr e)^2 + G_s e_dev : e_dev (docs/references.md section 4).
   virtual double small_strain_shear_modulus() const = 0;
   virtual double small_strain_area_modulus() const = 0;
 };

@@ -13,7 +13,7 @@
 // at every target, sum_S (8 pi/V) times minus the volume-weighted mean interior velocity of S
 // (for q = u w: sum (u . n) (x - c) w = integral_V u dV when the flux vanishes).
 // A uniform density on a closed surface has zero flux and gives -8 pi (V_S / V) delta_ij,
-// cancelling the -V_S/V shift of the periodic part (REFERENCES.md section 1); without the
+// cancelling the -V_S/V shift of the periodic part (docs/references.md section 1); without the
 // linear part a translating cell's velocity depends wrongly on the viscosity ratio.
 #include "periodic_box.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// RMS truncation-error estimates of the Ewald sums (REFERENCES.md section 2; Lindbo &
+// RMS truncation-error estimates of the Ewald sums (docs/references.md section 2; Lindbo &
 // Tornberg, JCP 229 (2010) 8994; af Klinteberg & Tornberg, IJNMF 76 (2014) 669), for random,
 // uncorrelated sources.
 //

@@ -10,7 +10,7 @@
 //   EwaldPlan plan(grid, sources, targets);   // once per geometry (time step)
 //   PointField u = plan.single_layer(f);      // every GMRES iteration
 //
-// Normalisation (REFERENCES.md sections 1-2), densities with their quadrature weights:
+// Normalisation (docs/references.md sections 1-2), densities with their quadrature weights:
 //   single_layer: u(x_t) = sum_s G^per(x_s - x_t) f_s               (= 8 pi mu u),
 //   double_layer: u_i(x_t) = sum_s T^per_ijk(x_s - x_t) q_s,j n_s,k,
 // G^per and T^per the periodic kernels with the k = 0 mode removed; T^per is the periodic part

@@ -1,7 +1,7 @@
 #pragma once
 // The geometry-independent half of smooth particle-mesh Ewald (section 5.2; Essmann et al.
 // 1995; Saintillan, Darve & Shaqfeh 2005): the uniform grid, its FFTW plans and the influence
-// function of the Fourier parts S^F, T^F (eq. 25, 28; REFERENCES.md section 2).
+// function of the Fourier parts S^F, T^F (eq. 25, 28; docs/references.md section 2).
 //
 // Grid arrays interleave components: value c of grid point (i, j, l) is at
 // ((i K2 + j) K3 + l) C + c, spectra likewise with K3/2 + 1 in place of K3 (FFTW r2c layout).

@@ -5,7 +5,7 @@
 //
 //   single_layer: u(x_t) = (1/V) sum_{k != 0} S^F(k) . sum_s f_s e^{i k.(x_s - x_t)}
 //   double_layer: u_i(x_t) = (1/V) sum_{k != 0} sum_s T^F_ijk(k) q_s,j n_s,k e^{i k.(x_s - x_t)}
-// (REFERENCES.md section 2; densities carry their quadrature weights). A source that is also
+// (docs/references.md section 2; densities carry their quadrature weights). A source that is also
 // a target contributes its smooth self-term, as it must (only the real-space sum skips r = 0).
 //
 // Products modify the work arrays: one thread at a time per plan (each product is itself

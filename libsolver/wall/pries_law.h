@@ -1,7 +1,7 @@
 #pragma once
 // The empirical relative apparent viscosity of blood in glass tubes (Pries, Neuhaus &
 // Gaehtgens, Am. J. Physiol. 263, 1992) and the Fahraeus effect (Pries et al. 1990), as given
-// in REFERENCES.md section 7: what the tube study (paper section 11.2, fig. 13) compares with.
+// in docs/references.md section 7; the tube study (paper section 11.2, fig. 13) compares with it.
 // D in micrometres; H_D the discharge and H_T the tube hematocrit.
 namespace rbcflow {
 

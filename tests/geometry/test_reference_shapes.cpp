@@ -1,5 +1,6 @@
 // Validation of the cell geometry against independent values: Carlson's elliptic integral for
-// the ellipsoid area, Gauss-Bonnet, and the published Evans-Fung cell (REFERENCES.md section 6).
+// the ellipsoid area, Gauss-Bonnet, and the published Evans-Fung cell (Microvasc. Res. 4, 1972;
+// docs/references.md section 6).
 #include "geometry/reference_shapes.h"
 
 #include <gtest/gtest.h>

@@ -59,7 +59,7 @@ TEST(StokesKernels, StressletIsTheStressOfTheStokeslet) {
   EXPECT_LT((stresslet_apply(-r, q, n) + full).norm(), 1e-13);  // odd
 }
 
-// REFERENCES.md section 1 in free space, sphere of radius 0.7, x = surface, x0 = target:
+// docs/references.md section 1 in free space, sphere of radius 0.7, x = surface, x0 = target:
 // integral G(x - x0) n dS = 0; integral T_ijk(x - x0) n_k dS = -8 pi delta_ij inside, 0 outside.
 TEST(StokesKernels, FreeSpaceLayerIdentitiesOnASphere) {
   const int N = 48;

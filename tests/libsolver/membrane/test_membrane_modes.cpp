@@ -1,4 +1,4 @@
-// Linear stiffness of a spherical capsule against the closed-form modes of REFERENCES.md
+// Linear stiffness of a spherical capsule against the closed-form modes of docs/references.md
 // section 4: for xi = A Y r + B grad_s Y + C r x grad_s Y on the unit sphere, the traction
 // (the negative of the membrane load, f = K xi) projects onto
 //   radial:     K_rr A + K_rp B,       K_rr = 4 K_s (+ E_B L (L - 2)),  K_rp = -2 K_s L

@@ -1,4 +1,4 @@
-// Validation of the singular and nearly-singular quadrature (section 5.4, REFERENCES.md
+// Validation of the singular and nearly-singular quadrature (section 5.4, docs/references.md
 // sections 1 and 3). The full convergence table of Fig. 3 is in the slow test next to this.
 #include "libsolver/quadrature/singular_quadrature.h"
 

@@ -21,7 +21,8 @@ Eigen::RowVector3d equation_3_sum(const PeriodicBox& box, const PointField& xs, 
 }  // namespace
 
 // A uniform density psi = e_j on a closed surface: -(8 pi/V) integral n_j (x - x0)_i dS
-// = -8 pi (V_S / V) delta_ij at every target (REFERENCES.md section 1), wherever the surface is.
+// = -8 pi (V_S / V) delta_ij at every target (docs/references.md section 1), wherever the
+// surface is.
 TEST(DoubleLayerLinear, UniformDensityGivesMinusEightPiVolumeFraction) {
   const int N = 12;
   const PeriodicBox box(Eigen::Vector3d(1.0, 1.2, 0.9));

@@ -19,8 +19,9 @@ double max_relative_difference(const PointField& a, const PointField& b) {
 }
 }  // namespace
 
-// The Ewald sum does not depend on xi (REFERENCES.md section 2): the real and Fourier halves of
-// the split are consistent. Non-cubic box, targets distinct from the sources.
+// The Ewald sum does not depend on xi (Hasimoto 1959; docs/references.md section 2): the real
+// and Fourier halves of the split are consistent. Non-cubic box, targets distinct from the
+// sources.
 TEST(EwaldDirect, SumIsIndependentOfXi) {
   const Eigen::Vector3d L(1.0, 1.3, 0.8);
   const PeriodicBox box(L);

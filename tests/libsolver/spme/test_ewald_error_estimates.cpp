@@ -29,7 +29,7 @@ const Data& data() {
 }
 }  // namespace
 
-// The real-space estimates of REFERENCES.md section 2 against the truncation error measured
+// The real-space estimates of docs/references.md section 2 against the truncation error measured
 // with the brute-force real-space sum (random sources): within 1.5x, as quoted.
 TEST(EwaldErrorEstimates, RealSpaceEstimatesMatchMeasurement) {
   const Data& d = data();

@@ -140,7 +140,7 @@ TEST(EwaldPlan, HasimotoConstant) {
   }
 }
 
-// REFERENCES.md section 1 on a sphere R = 0.3 in a unit box (Gauss grid N = 40), targets away
+// docs/references.md section 1 on a sphere R = 0.3 in a unit box (Gauss grid N = 40), targets away
 // from the surface: integral G^per n dS = 0, integral T^per_ijk n_k dS = -8 pi (chi - V_S/V)
 // delta_ij (-22.29029516 inside, +2.84244607 outside), and with the linear part of eq. (3)
 // -8 pi chi delta_ij.

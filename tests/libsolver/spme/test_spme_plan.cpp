@@ -31,7 +31,7 @@ const Data& data() {
 }
 }  // namespace
 
-// The SPME grid error decreases as h^p (REFERENCES.md section 2): smooth part against the
+// The SPME grid error decreases as h^p (docs/references.md section 2): smooth part against the
 // direct Fourier sum with the same xi, K = 32 -> 64 (xi h = 0.125 -> 0.0625, where the
 // truncation beyond the Nyquist wavenumber is negligible), orders 4, 6, 8, both layers.
 TEST(SpmePlan, GridErrorDecreasesAsHToThePowerP) {

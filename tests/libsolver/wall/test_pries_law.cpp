@@ -1,4 +1,5 @@
-// The Pries law of REFERENCES.md section 7 as coded: its defining identities (mu_rel = mu_045
+// The Pries law (Pries, Neuhaus & Gaehtgens, Am. J. Physiol. 263, 1992; docs/references.md
+// section 7) as coded: its defining identities (mu_rel = mu_045
 // at H_D = 0.45 for every D, mu_rel = 1 without cells), the Fahraeus effect (H_T < H_D in
 // narrow tubes, H_T -> H_D in wide ones) and the inversion H_T -> H_D, and the
 // non-monotonic trend of fig. 13: a minimum near D = 6.8 um.

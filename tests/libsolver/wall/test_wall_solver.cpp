@@ -11,7 +11,8 @@
 using namespace rbcflow;
 
 TEST(WallSolver, ExteriorFluxMatchesSanganiAcrivos) {
-  // REFERENCES.md section 7: mu Q / (G L^4) for a / L = 0.1 .. 0.4. The series truncated after
+  // Sangani & Acrivos (1982), docs/references.md section 7: mu Q / (G L^4) for a / L = 0.1 .. 0.4.
+  // The series truncated after
   // chi^24 is off by 3.4e-3 (relative) at a / L = 0.4 (chi = 0.50); the error scales as chi^28,
   // so ~1e-4 at a / L = 0.375 (the D = 6 test case).
   const double expected[4] = {0.162851, 0.066943, 0.024834, 0.006942};
