@@ -1,4 +1,5 @@
-# Finds every package of the stack from Debian 12 packages (see shared STACK.md).
+# Finds every package of the stack from Debian 12 packages (Eigen 3.4, FFTW 3.3, gmsh 4.8,
+# VTK 9.1, CGAL 5.5, serial HDF5 1.10, GoogleTest, toml11 3.7, OpenMP).
 # A missing package stops configuration with the name of the Debian package to install;
 # scripts/install-deps.sh installs all of them.
 
