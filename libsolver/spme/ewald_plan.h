@@ -39,7 +39,7 @@ namespace rbcflow {
 // Pair coefficients are kept for lists of at most this many pairs (16 bytes each: 3.2 GB). A
 // bound of 5e7 dropped the cells' double-layer coefficients at 125 red cells (hematocrit 0.3):
 // keeping them costs 0.8 GB there (peak 11.7 -> 12.5 GB, 94 -> 100 MB per cell) and saves
-// 40% of the cell products (docs/performance.md, session 17).
+// 40% of the cell products (docs/performance.md, "Growth with the cell count").
 inline constexpr std::int64_t kMaxKeptPairs = 200'000'000;
 
 struct EwaldTimings {
