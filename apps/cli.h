@@ -1,6 +1,6 @@
 #pragma once
 // The rbcflow command line: each subcommand parses its arguments and calls the library.
-// Exit status (CASE_FORMAT.md): 0 success, 2 bad case file or argument, 1 failure in a run.
+// Exit status (docs/case-format.md): 0 success, 2 bad case file or argument, 1 failure in a run.
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -18,7 +18,7 @@ namespace rbcflow::cli {
 namespace {
 
 std::string gmsh_version() {
-  // gmsh::initialize() resets the OpenMP thread count to 1 (STACK.md): restore it.
+  // gmsh::initialize() resets the OpenMP thread count to 1 (gmsh 4.8 calls omp_set_num_threads): restore it.
   const int threads = omp_get_max_threads();
   gmsh::initialize(0, nullptr, false);
   std::string v;

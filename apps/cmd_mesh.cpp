@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "case_vessel.h"
+#include "scenario/vessel.h"
 #include "cli.h"
-#include "geometry/mesh_check.h"
-#include "geometry/mesh_orientation.h"
-#include "geometry/vessel.h"
+#include "geometry/vessel/mesh_check.h"
+#include "geometry/vessel/mesh_orientation.h"
+#include "geometry/vessel/vessel.h"
 #include "io/case.h"
 #include "io/vtk_polydata.h"
 

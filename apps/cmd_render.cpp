@@ -8,7 +8,7 @@
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
-#include "io/case_derived.h"
+#include "scenario/derived.h"
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/vtk_series.h"

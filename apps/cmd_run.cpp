@@ -1,13 +1,15 @@
-// rbcflow run: parse the arguments, check the case and the output directory, run (run_loop.h).
+// rbcflow run: parse the arguments, check the case and the output directory, run (scenario/run.h).
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
 #include "io/output_dir.h"
-#include "run_loop.h"
+#include "scenario/run.h"
+#include "thread_handover.h"
 
 namespace rbcflow::cli {
 namespace {
@@ -28,13 +30,28 @@ long parse_steps(const std::string& text) {
   return v;
 }
 
+// A directory that holds another run's files is not written into by accident: only with
+// --overwrite (which clears them first) or to continue that very run from its checkpoint.
+void check_earlier_run(const fs::path& dir, const std::string& restart, bool overwrite) {
+  if (overwrite) return;
+  const std::vector<std::string> found = run_files(dir);
+  if (found.empty() || (!restart.empty() && restarts_in_place(restart, dir))) return;
+  std::string list;
+  for (const std::string& f : found) list.append(list.empty() ? "" : ", ").append(f);
+  throw UsageError("rbcflow run: the output directory " + dir.string() + " holds an earlier run (" + list +
+                   "); pass --overwrite to replace it, --restart " + (dir / "checkpoints").string() +
+                   "/step_N.h5 to continue it, or --out another directory");
+}
+
 void print_help() {
   std::printf(
-      "usage: rbcflow run CASE.toml [--out DIR] [--restart CHECKPOINT.h5] [--steps N] [--quiet]\n"
+      "usage: rbcflow run CASE.toml [--out DIR] [--restart CHECKPOINT.h5] [--steps N] [--overwrite] [--quiet]\n"
       "  Runs the case to time.end (or N more steps), writing to output.dir (or DIR):\n"
       "  case.toml, diagnostics.csv, cells.csv, rbcflow.xdmf/.h5, rbcflow.pvd + vtk/, renders/,\n"
       "  checkpoints/ and diagnostics.png. --restart continues from a checkpoint of the same case\n"
-      "  exactly as the uninterrupted run would have. Exit 0 on success, 2 for a bad case or\n"
+      "  exactly as the uninterrupted run would have. A directory that holds another run is\n"
+      "  refused unless --overwrite (which first removes that run's files) or the restart\n"
+      "  continues that run. Exit 0 on success, 2 for a bad case or\n"
       "  argument, 1 when the run fails (the message names the step and the last checkpoint).\n");
 }
 
@@ -48,6 +65,7 @@ int run_run(Args& args) {
   std::string out, restart, steps_text;
   RunRequest request;
   request.quiet = args.flag("--quiet");
+  request.overwrite = args.flag("--overwrite");
   args.option("--out", out);
   args.option("--restart", restart);
   args.option("--steps", steps_text);
@@ -62,6 +80,8 @@ int run_run(Args& args) {
     throw UsageError("rbcflow run: --restart " + restart + ": no such file");
   }
   request.restart = restart;
+  request.threads_handed_over = threads_handed_over;  // from rbcflow study --jobs
+  check_earlier_run(request.c.output.dir, restart, request.overwrite);
   if (request.c.output.render) ensure_display();  // before any work: without a display the command restarts under Xvfb
   run_case(request);
   return 0;

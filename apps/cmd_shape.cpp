@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cli.h"
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "io/vtk_polydata.h"
 
 namespace rbcflow::cli {

@@ -16,14 +16,14 @@
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
-#include "io/case_derived.h"
+#include "scenario/derived.h"
 #include "io/csv.h"
 #include "io/output_dir.h"
 #include "io/render.h"
 #include "io/study_plot.h"
 #include "io/vtk_series.h"
 #include "libsolver/wall/pries_law.h"
-#include "run_loop.h"
+#include "scenario/run.h"
 #include "study_analysis.h"
 
 namespace rbcflow::cli {
@@ -114,7 +114,7 @@ void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path
   for (std::size_t k = 0; k < cases.size(); ++k) {
     if (reused[k]) continue;
     ChildRun r;
-    r.args = {"run", case_files[k].string(), "--out", cases[k].output.dir.string()};
+    r.args = {"run", case_files[k].string(), "--out", cases[k].output.dir.string(), "--overwrite"};
     if (!steps_text.empty()) r.args.insert(r.args.end(), {"--steps", steps_text});
     r.log = out / (case_files[k].stem().string() + ".log");
     runs.push_back(std::move(r));
@@ -155,6 +155,7 @@ void print_help() {
       "  DIR/study.png (mu_eff against D in um, with the Pries law at the runs' tube hematocrit,\n"
       "  converted to the discharge hematocrit, and its +-10%% band) and DIR/renders/<case>_end.png\n"
       "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n"
+      "  A case that is run replaces what DIR/<case name>/ held (rbcflow run --overwrite).\n"
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
       "  runs made separately with rbcflow run CASE.toml --out DIR/<case name> (or moved there).\n"
@@ -224,7 +225,12 @@ int run_study(Args& args) {
       continue;
     } else if (jobs == 1) {
       try {
-        run_case(RunRequest{c, {}, steps, quiet});
+        RunRequest request;
+        request.c = c;
+        request.steps = steps;
+        request.quiet = quiet;
+        request.overwrite = true;  // the study owns DIR/<case name>/
+        run_case(request);
       } catch (const InputError&) {
         throw;
       } catch (const std::runtime_error& e) {  // the run failed (blow-up, unconverged GMRES): go on

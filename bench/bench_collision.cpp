@@ -9,9 +9,9 @@
 
 #include <vector>
 
-#include "geometry/cell_placement.h"
-#include "geometry/reference_shapes.h"
-#include "geometry/vessel.h"
+#include "geometry/contact/cell_placement.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/stepper/collision.h"
 
 using namespace rbcflow;

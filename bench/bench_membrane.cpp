@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/membrane/membrane_force.h"
 
 using namespace rbcflow;

@@ -6,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/reference_shapes.h"
-#include "geometry/surface_projection.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/surface/surface_projection.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/ewald_plan.h"

@@ -2,8 +2,8 @@
 //   build/bin/bench_sph_transform [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include "geometry/reference_shapes.h"
-#include "geometry/sph_transform.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/sph/sph_transform.h"
 
 using namespace rbcflow;
 

@@ -30,10 +30,10 @@
 #include <mutex>
 #include <random>
 
-#include "geometry/cell_placement.h"
-#include "geometry/fftw_util.h"
-#include "geometry/reference_shapes.h"
-#include "geometry/vessel.h"
+#include "geometry/contact/cell_placement.h"
+#include "geometry/sph/fftw_util.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/spme/ewald_plan.h"
 
 using namespace rbcflow;

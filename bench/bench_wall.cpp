@@ -10,7 +10,7 @@
 #include <chrono>
 #include <memory>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/wall/near_field.h"
 #include "libsolver/wall/symmetric_block_matrix.h"

@@ -2,12 +2,14 @@
 
 #include <Eigen/Geometry>
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 
-#include "geometry/cell_placement.h"
-#include "geometry/reference_shapes.h"
-#include "geometry/vessel.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/vessel/vessel.h"
+#include "io/case.h"
 #include "libsolver/membrane/membrane_law.h"
+#include "scenario/scenario.h"
 
 namespace rbcflow::bench {
 
@@ -67,29 +69,16 @@ std::unique_ptr<CellStepper> minicase() {
   return make(spec, std::move(o));
 }
 
-// `count` cells at the tube hematocrit of tube_27_cells.toml: the period grows with the count
-// (13.33 for 27 cells).
+// data/cases/tube_27_cells.toml with `count` cells at its tube hematocrit: the period grows with
+// the count (13.33 for 27 cells), the cells placed by the same code as rbcflow run's.
 std::unique_ptr<CellStepper> tube_cells(int count) {
-  const Eigen::Vector3d box(6.6, 6.6, 13.33 * count / 27.0);
-  const VesselMesh vessel = tube(TubeSpec{6.0, 2, box, 0.25});
-  Spec spec{16, 48, 5.0, {}};
-  PlacementSpec placement;
-  placement.box = box;
-  placement.count = count;
-  placement.gap = 0.05;  // max(h_s, 0.05), as rbcflow run places cells
-  placement.seed = 1;
-  const SHSurface rbc = make_biconcave(16);
-  spec.cells = placed_surfaces(rbc, place_cells(rbc, placement, &vessel).cells);
-  CellStepperOptions o;
-  o.domain.box = PeriodicBox(box);
-  o.domain.ewald_tolerance = 1e-6;
-  o.mean_velocity = Eigen::Vector3d(0, 0, 5);
-  o.gmres_tolerance = 1e-6;
-  o.wall = std::make_shared<const WallElements>(vessel);
-  o.wall_solve.tolerance = 1e-6;
-  o.collision_threshold = 0.02;
-  o.volume_constraint = true;
-  return make(spec, std::move(o));
+  Case c = read_case(std::filesystem::path(RBCFLOW_CASES_DIR) / "tube_27_cells.toml");
+  c.domain.box[2] = 13.33 * count / 27.0;
+  c.cells->hematocrit.reset();
+  c.cells->count = count;
+  c.time.dt = kDt;
+  Scenario s = prepare_scenario(c);
+  return make_stepper(s);
 }
 
 }  // namespace

@@ -3,12 +3,12 @@
 //   single:   one red cell in free-space shear flow (rate 1), N = 16, M = 48, lambda = 5;
 //   minicase: 2 red cells, N = 12, M = 36, lambda = 1, in a D = 10 tube of ~2,400 triangles,
 //             box 10.5 x 10.5 x 8, <u> = e_z, Ewald tolerance 1e-6, wall solve to 1e-6;
-//   tube27:   data/cases/tube_27_cells.toml: 27 red cells (tube hematocrit 0.30, seed 1),
-//             N = 16, M = 48, lambda = 5, D = 6 tube (h = 0.25), box 6.6 x 6.6 x 13.33,
-//             <u> = 5 e_z, Ewald and GMRES tolerances 1e-6, collisions h_s = 0.02, volume
-//             constraint;
-//   tubeK:    the same with K cells in a period of 13.33 K / 27 (fixed hematocrit, e.g. tube8,
-//             tube125: the growth series).
+//   tube27:   data/cases/tube_27_cells.toml, read and prepared as rbcflow run does: 27 red
+//             cells (tube hematocrit 0.30, seed 1), N = 16, M = 48, lambda = 5, D = 6 tube
+//             (h = 0.25), box 6.6 x 6.6 x 13.33, <u> = 5 e_z, Ewald and GMRES tolerances 1e-6,
+//             collisions h_s = 0.02, volume constraint;
+//   tubeK:    the same case with K cells in a period of 13.33 K / 27 (fixed hematocrit, e.g.
+//             tube8, tube125: the growth series).
 // Membranes: Skalak with bending, the paper's parameters (35). dt = 1e-3 (about the "auto"
 // step (37) of these cases; the cost of a step hardly depends on it).
 #include <memory>

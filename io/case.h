@@ -1,6 +1,6 @@
 #pragma once
 // A case: everything a run needs, read from a TOML case file. The keys, defaults and ranges
-// are documented in docs/case-format.md (the contract is CASE_FORMAT.md). Units as in
+// are documented in docs/case-format.md. Units as in
 // section 6 of the paper: lengths in the equivalent cell radius a, time in 1/k*, viscosity in
 // plasma viscosity. The periodic box spans [0, L1) x [0, L2) x [0, L3); a vessel's axis runs
 // through the centre of the box's cross-section.
@@ -22,7 +22,7 @@ enum class FlowKind { none, shear, extensional };
 enum class VesselKind { tube, constriction, bifurcation, file };
 enum class CellShape { rbc, sphere, ellipsoid };
 // How cells start in a tube narrower than the cell: stretched edge-on, or folded face-on into
-// parachutes (geometry/cell_placement.h).
+// parachutes (geometry/contact/cell_placement.h).
 enum class NarrowStartKind { stretched, parachute };
 enum class MembraneLawKind { skalak, neo_hookean, hookean };
 enum class TimeSchemeKind { euler, ab2 };

@@ -1,5 +1,5 @@
 #pragma once
-// diagnostics.csv and cells.csv (CASE_FORMAT.md): the contract's columns in order, one row
+// diagnostics.csv and cells.csv (docs/case-format.md): the contract's columns in order, one row
 // per step and one row per cell per frame, appended and flushed as written so that a crash
 // loses at most the row being written. Empty fields where a value does not apply.
 #include <cstdio>
@@ -20,7 +20,7 @@ struct DiagnosticsRow {
   Vec3 mean_velocity{};
   Vec3 pressure_gradient{};
   std::optional<double> effective_viscosity;  // (46) with (45); empty without a tube
-  std::optional<double> tube_hematocrit;      // empty without a tube
+  std::optional<double> tube_hematocrit;      // empty without a vessel or cells
   double max_volume_error = 0;                // relative to each cell's initial volume
   double max_area_error = 0;
   int gmres_cells = 0;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangle_mesh.h"
+#include "geometry/surface/triangle_mesh.h"
 
 namespace rbcflow {
 

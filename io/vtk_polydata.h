@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangle_mesh.h"
+#include "geometry/surface/triangle_mesh.h"
 #include "io/surface.h"
 
 namespace rbcflow {

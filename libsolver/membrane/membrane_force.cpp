@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "geometry/surface_divergence.h"
+#include "geometry/surface/surface_divergence.h"
 
 namespace rbcflow {
 

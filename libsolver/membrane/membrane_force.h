@@ -3,7 +3,7 @@
 //   f = -div_s T,  T = N^{ab} a_a (x) a_b + Q^a a_a (x) n,  Q = P div_s(M^{ab} a_a (x) a_b),
 // with the in-plane tension N from a MembraneLaw, the bending moment (21)
 // M^a_b = -E_B (b^a_b - b^{aR}_b), and surface divergences computed spectrally
-// (geometry/surface_divergence.h). This f is the traction jump of eq. (6): the membrane's own
+// (geometry/surface/surface_divergence.h). This f is the traction jump of eq. (6): the membrane's own
 // elastic load on the fluid is -f. An inflated sphere has f . n = +2 tau / r > 0 (the membrane
 // pulls inward; the fluid must push outward), and the virtual work is dE = integral f . dX dA.
 //
@@ -12,8 +12,8 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "geometry/cell_grids.h"
-#include "geometry/sh_surface.h"
+#include "geometry/surface/cell_grids.h"
+#include "geometry/surface/sh_surface.h"
 #include "libsolver/membrane/membrane_law.h"
 
 namespace rbcflow {

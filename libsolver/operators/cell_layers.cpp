@@ -8,7 +8,7 @@
 #include "libsolver/spme/double_layer_linear.h"
 #include "libsolver/spme/real_space_sum.h"
 #include "near_targets.h"
-#include "scoped_timer.h"
+#include "libsolver/common/scoped_timer.h"
 
 namespace rbcflow {
 

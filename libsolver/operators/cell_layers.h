@@ -16,10 +16,10 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/cell_grids.h"
+#include "geometry/surface/cell_grids.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/ewald_plan.h"
-#include "libsolver/spme/periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 #include "libsolver/spme/spme_grid_cache.h"
 
 namespace rbcflow {

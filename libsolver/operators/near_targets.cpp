@@ -5,9 +5,9 @@
 #include <memory>
 #include <numbers>
 
-#include "geometry/aabb_tree.h"
-#include "geometry/sh_surface.h"
-#include "geometry/surface_projection.h"
+#include "geometry/cgal/aabb_tree.h"
+#include "geometry/surface/sh_surface.h"
+#include "geometry/surface/surface_projection.h"
 
 namespace rbcflow {
 namespace {

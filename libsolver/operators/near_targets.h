@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "libsolver/quadrature/singular_quadrature.h"
-#include "libsolver/spme/periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

@@ -9,7 +9,7 @@
 #include <cassert>
 #include <memory>
 
-#include "geometry/sph_transform.h"
+#include "geometry/sph/sph_transform.h"
 
 namespace rbcflow {
 

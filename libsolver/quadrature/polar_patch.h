@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "geometry/gauss_legendre.h"
+#include "geometry/sph/gauss_legendre.h"
 
 namespace rbcflow {
 

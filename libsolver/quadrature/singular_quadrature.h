@@ -21,8 +21,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/cell_grids.h"
-#include "geometry/sh_surface.h"
+#include "geometry/surface/cell_grids.h"
+#include "geometry/surface/sh_surface.h"
 #include "libsolver/quadrature/hermite_interpolation.h"
 #include "libsolver/quadrature/layer_kernel.h"
 #include "libsolver/quadrature/regular_quadrature.h"

@@ -15,7 +15,7 @@
 // A uniform density on a closed surface has zero flux and gives -8 pi (V_S / V) delta_ij,
 // cancelling the -V_S/V shift of the periodic part (docs/references.md section 1); without the
 // linear part a translating cell's velocity depends wrongly on the viscosity ratio.
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

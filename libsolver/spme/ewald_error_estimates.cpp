@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/gauss_legendre.h"
+#include "geometry/sph/gauss_legendre.h"
 
 namespace rbcflow {
 namespace {

@@ -11,7 +11,7 @@
 // fifth of the RMS error relative to the RMS velocity.
 #include <array>
 
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "ewald_error_estimates.h"
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "neighbor_list.h"
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 #include "real_space_sum.h"
 #include "spme_grid.h"
 #include "spme_plan.h"

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

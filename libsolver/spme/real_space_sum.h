@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "neighbor_list.h"
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "bspline.h"
-#include "geometry/fftw_util.h"
+#include "geometry/sph/fftw_util.h"
 #include "libsolver/kernels/ewald_kernels.h"
 
 namespace rbcflow {

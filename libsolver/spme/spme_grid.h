@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "ewald_parameters.h"
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 

@@ -13,8 +13,8 @@
 #include <chrono>
 #include <memory>
 
-#include "geometry/fftw_util.h"
-#include "periodic_box.h"
+#include "geometry/sph/fftw_util.h"
+#include "libsolver/common/periodic_box.h"
 #include "spme_grid.h"
 #include "spme_stencils.h"
 

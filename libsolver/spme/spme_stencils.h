@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 #include "spme_grid.h"
 
 namespace rbcflow {

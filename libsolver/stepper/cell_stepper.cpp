@@ -66,7 +66,7 @@ namespace {
 // 0.06), and its quadratic guess takes 3-4 iterations where the linear took 6 (a cubic took
 // 4). The wall force is not (that ratio is 0.3-1.6 from step to step in tube27 and the
 // minicase): it keeps the linear guess, with which the minicase's wall solve takes 1.9
-// iterations per step against 2.6 from the quadratic (docs/performance.md, session 17).
+// iterations per step against 2.6 from the quadratic (docs/performance.md, "Tried and left out").
 template <typename Matrix>
 Matrix extrapolated(std::initializer_list<const Matrix*> history) {
   std::array<const Matrix*, 3> x{};

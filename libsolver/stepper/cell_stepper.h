@@ -22,6 +22,7 @@
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/state_archive.h"
 #include "libsolver/stepper/step_timings.h"
 #include "libsolver/stepper/tube_drive.h"
 #include "libsolver/stepper/wall_coupling.h"
@@ -88,6 +89,10 @@ struct StepReport {
 // (the staggered coupling and AB2 use them), and U^{n-2}, U^{n-3}, F^{n-2}: the GMRES initial
 // guesses 3 U^{n-1} - 3 U^{n-2} + U^{n-3} and 2 F^{n-1} - F^{n-2}.
 struct StepperState {
+  // Writes or reads every field under its checkpoint name (state_archive.h); throws
+  // std::invalid_argument when a cell's coefficients are not those of an order.
+  void archive(StateArchive& a);
+
   double time = 0.0;
   long steps = 0;
   std::vector<SHCoeffs> shapes;
@@ -123,8 +128,13 @@ class CellStepper {
   StepperState state() const;
   // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
   void restore(const StepperState& s);
+  // The state as checkpoint items (StepperState::archive) and the wall's nodes, which a
+  // restart checks against the vessel as meshed then; load() throws as restore() does.
+  void save(StateArchive& a) const;
+  void load(StateArchive& a);
 
  private:
+  void archive_wall(StateArchive& a) const;
   void enforce_volume(int c);
   // X^{n+1}, collision removal and the volume constraint (advance() with cells).
   void move_cells(const FlowSolution& s, StepReport& report);

@@ -8,8 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "geometry/aabb_tree.h"
-#include "geometry/surface_projection.h"
+#include "geometry/cgal/aabb_tree.h"
+#include "geometry/surface/surface_projection.h"
 
 namespace rbcflow {
 namespace {

@@ -17,9 +17,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "geometry/sh_surface.h"
-#include "geometry/sph_transform.h"
-#include "geometry/wall_distance.h"
+#include "geometry/surface/sh_surface.h"
+#include "geometry/sph/sph_transform.h"
+#include "geometry/contact/wall_distance.h"
 
 namespace rbcflow {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Wall-clock seconds spent in each part of one CellStepper::solve() (FlowSolution::timings),
 // for bench/bench_step.cpp and docs/performance.md. Measuring changes no result.
-#include "libsolver/operators/scoped_timer.h"
+#include "libsolver/common/scoped_timer.h"
 
 namespace rbcflow {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/gauss_legendre.h"
+#include "geometry/sph/gauss_legendre.h"
 
 namespace rbcflow {
 

@@ -5,7 +5,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "geometry/vessel_mesh.h"
+#include "geometry/vessel/vessel_mesh.h"
 
 namespace rbcflow {
 

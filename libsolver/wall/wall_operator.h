@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "libsolver/spme/ewald_plan.h"
-#include "libsolver/spme/periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 #include "libsolver/spme/spme_grid_cache.h"
 #include "near_field.h"
 #include "symmetric_block_matrix.h"

@@ -9,8 +9,8 @@
 #include <numbers>
 
 #include "io/case.h"
-#include "io/case_derived.h"
-#include "io/cell_layout.h"
+#include "scenario/derived.h"
+#include "scenario/cell_layout.h"
 #include "io/csv.h"
 #include "io/output_dir.h"
 #include "io/vtk_series.h"

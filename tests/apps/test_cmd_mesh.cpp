@@ -9,9 +9,9 @@
 #include <sstream>
 #include <string>
 
-#include "geometry/mesh_check.h"
-#include "geometry/mesh_orientation.h"
-#include "geometry/vessel.h"
+#include "geometry/vessel/mesh_check.h"
+#include "geometry/vessel/mesh_orientation.h"
+#include "geometry/vessel/vessel.h"
 #include "io/vtk_polydata.h"
 
 using namespace rbcflow;

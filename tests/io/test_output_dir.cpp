@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 using namespace rbcflow;
 namespace fs = std::filesystem;
@@ -79,4 +80,34 @@ TEST(OutputDir, ARestartElsewhereCarriesTheTablesOfTheCheckpointsRun) {
   EXPECT_FALSE(fs::exists(base / "other" / "diagnostics.csv"));
   EXPECT_EQ(text(base / "run" / "diagnostics.csv"), "step,time\n1,0.1\n2,0.2\n3,0.3\n");
   fs::remove_all(base);
+}
+
+TEST(OutputDir, AnEarlierRunIsFoundByItsFilesAndClearedAlone) {
+  const fs::path dir = fs::temp_directory_path() / "rbcflow_output_dir_earlier";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "vtk");
+  fs::create_directories(dir / "checkpoints");
+  EXPECT_FALSE(holds_run(dir));  // empty folders are not a run
+  std::ofstream(dir / "notes.txt") << "the user's own file";
+  EXPECT_FALSE(holds_run(dir));
+  std::ofstream(dir / "diagnostics.csv") << "step\n";
+  std::ofstream(dir / "checkpoints" / "step_00000004.h5") << "x";
+  EXPECT_TRUE(holds_run(dir));
+  EXPECT_EQ(run_files(dir), (std::vector<std::string>{"diagnostics.csv", "checkpoints"}));
+  clear_run(dir);
+  EXPECT_FALSE(holds_run(dir));
+  EXPECT_FALSE(fs::exists(dir / "checkpoints"));
+  EXPECT_FALSE(fs::exists(dir / "vtk"));
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));  // not a run's file: kept
+  fs::remove_all(dir);
+}
+
+TEST(OutputDir, ARestartInPlaceIsAStepOfTheSameRun) {
+  const fs::path dir = fs::temp_directory_path() / "rbcflow_output_dir_in_place";
+  fs::create_directories(dir / "checkpoints");
+  EXPECT_TRUE(restarts_in_place(dir / "checkpoints" / "step_00000006.h5", dir));
+  EXPECT_TRUE(restarts_in_place(dir / "checkpoints" / "step_00000006.h5", dir / "."));
+  EXPECT_FALSE(restarts_in_place(dir / "step_00000006.h5", dir));  // not in a run's checkpoints/
+  EXPECT_FALSE(restarts_in_place(dir / "checkpoints" / "step_00000006.h5", fs::temp_directory_path()));
+  fs::remove_all(dir);
 }

@@ -13,7 +13,7 @@
 #include <numbers>
 #include <set>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 namespace fs = std::filesystem;

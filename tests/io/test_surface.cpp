@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 

@@ -10,7 +10,7 @@
 
 #include <fstream>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 namespace fs = std::filesystem;

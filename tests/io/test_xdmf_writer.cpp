@@ -16,7 +16,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 namespace fs = std::filesystem;

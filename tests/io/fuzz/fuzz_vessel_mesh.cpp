@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "geometry/mesh_check.h"
-#include "geometry/mesh_orientation.h"
+#include "geometry/vessel/mesh_check.h"
+#include "geometry/vessel/mesh_orientation.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2) return 0;

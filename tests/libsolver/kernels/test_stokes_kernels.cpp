@@ -2,7 +2,7 @@
 
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/kernels/stokes_kernels.h"
 
 using namespace rbcflow;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/membrane/membrane_force.h"
 
 using namespace rbcflow;

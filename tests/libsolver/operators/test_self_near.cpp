@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "geometry/parachute_fold.h"
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/parachute_fold.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/near_targets.h"
 #include "libsolver/quadrature/singular_quadrature.h"
@@ -73,7 +73,7 @@ TEST(SelfNear, SphereHasNone) {
 }
 
 // A fold whose two sides are close on the parameter sphere too (the rim of a parachute,
-// geometry/parachute_fold.h, radius 0.78 as in the D = 1.75 quick tube) lies inside each node's
+// geometry/surface/parachute_fold.h, radius 0.78 as in the D = 1.75 quick tube) lies inside each node's
 // own singular patch: there the radial patch points decide. Measured at N = 16, largest error
 // of the identity: 6.5e-2 with the default 12 radial points, 1.6e-2 with 24 (docs/fahraeus.md).
 TEST(SelfNear, ParachuteRimNeedsMoreRadialPatchPoints) {

@@ -4,7 +4,7 @@
 #include <memory>
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/double_layer_linear.h"
 #include "libsolver/spme/ewald_parameters.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/surface_projection.h"
+#include "geometry/surface/surface_projection.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/spme/real_space_sum.h"

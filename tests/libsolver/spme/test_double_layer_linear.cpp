@@ -2,7 +2,7 @@
 
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/spme/double_layer_linear.h"
 #include "test_points.h"
 

@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "libsolver/kernels/ewald_kernels.h"
-#include "libsolver/spme/ewald_direct.h"
+#include "tests/libsolver/spme/ewald_direct.h"
 #include "test_points.h"
 
 using namespace rbcflow;

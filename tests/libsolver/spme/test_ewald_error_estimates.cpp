@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "libsolver/spme/ewald_direct.h"
+#include "tests/libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/ewald_error_estimates.h"
 #include "libsolver/spme/spme_plan.h"
 #include "test_points.h"

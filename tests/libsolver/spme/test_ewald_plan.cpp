@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/kernels/stokes_kernels.h"
 #include "libsolver/spme/double_layer_linear.h"
-#include "libsolver/spme/ewald_direct.h"
+#include "tests/libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "test_points.h"
 

@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "libsolver/spme/periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 using namespace rbcflow;
 

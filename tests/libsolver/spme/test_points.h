@@ -2,7 +2,7 @@
 // Random point data shared by the Ewald tests.
 #include <random>
 
-#include "libsolver/spme/periodic_box.h"
+#include "libsolver/common/periodic_box.h"
 
 namespace rbcflow::test {
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "libsolver/kernels/ewald_kernels.h"
-#include "libsolver/spme/ewald_direct.h"
+#include "tests/libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/real_space_sum.h"
 #include "test_points.h"
 

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <random>
 
-#include "geometry/fftw_util.h"
+#include "geometry/sph/fftw_util.h"
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/spme/bspline.h"
 #include "libsolver/spme/spme_grid.h"

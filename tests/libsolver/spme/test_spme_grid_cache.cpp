@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/fftw_util.h"
+#include "geometry/sph/fftw_util.h"
 
 using namespace rbcflow;
 

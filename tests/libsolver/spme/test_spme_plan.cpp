@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "libsolver/spme/ewald_direct.h"
+#include "tests/libsolver/spme/ewald_direct.h"
 #include "libsolver/spme/spme_plan.h"
 #include "test_points.h"
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/wall/tube_flow.h"
 #include "vessel_cell_support.h"
 

@@ -1,12 +1,12 @@
 #pragma once
-// Small-deformation relaxation of a spherical capsule (paper section 9, fig. 4; REFERENCES.md
+// Small-deformation relaxation of a spherical capsule (paper section 9, fig. 4; docs/references.md
 // section 4), shared by the default and the slow relaxation tests: Hookean law (41) with
 // E_S = 1, E_D = 2.5, no bending. The capsule starts in the slow spheroidal eigenmode (l, m = 2)
 // with amplitude 1e-4; its Y_lm coefficient decays as exp(-w t) with w_slow from the secular
 // equation. Forward Euler measures -ln(1 - w dt) / dt (eq. 43), inverted before comparing.
 #include <cmath>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow::test {

@@ -1,14 +1,14 @@
 #pragma once
 // A spherical neo-Hookean capsule (radius 1, no bending) in the free-space simple shear
-// u = (gamma z, 0, 0), lambda = 1 (REFERENCES.md section 5), shared by the fast and the slow
+// u = (gamma z, 0, 0), lambda = 1 (docs/references.md section 5), shared by the fast and the slow
 // shear validations. Units: mu = 1, gamma = 1, so G_s = 1 / Ca_G.
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
 
-#include "geometry/inertia_ellipsoid.h"
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/inertia_ellipsoid.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow::shear_test {
@@ -25,7 +25,7 @@ struct ShearRun {
 };
 
 // Small-deformation rate of the slow l = 2 spheroidal mode of a neo-Hookean sphere
-// (K_s = 3 G_s), lambda = 1, in units of G_s / (mu a): REFERENCES.md section 4.
+// (K_s = 3 G_s), lambda = 1, in units of G_s / (mu a): docs/references.md section 4.
 inline double slow_l2_rate() {
   const double l = 2, L = 6, lam = 1, Gs = 1, Ks = 3;
   const double Rrr = (2 * l * l + 3 * l + 4) / (l + 1) + lam * (2 * l * l + l + 3) / l;
@@ -96,7 +96,7 @@ inline ShearRun run_shear(double ca, int order, int dealias_order, double safety
   return r;
 }
 
-// Barthes-Biesel & Rallison (1981), REFERENCES.md section 5, nu_s = 1/2 (neo-Hookean):
+// Barthes-Biesel & Rallison (1981), docs/references.md section 5, nu_s = 1/2 (neo-Hookean):
 // D = 25/12 Ca_G and theta = pi/4 - Ca_G [(79 + 43 nu + 16 nu^2) lambda + 96 + 72 nu + 24 nu^2]
 // / [32 (1 + nu)(2 + nu)].
 inline double theory_deformation(double ca) { return 25.0 / 12.0 * ca; }

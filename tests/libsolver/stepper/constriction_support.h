@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/stepper/tube_drive.h"
 #include "vessel_cell_support.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow::dealiasing_test {

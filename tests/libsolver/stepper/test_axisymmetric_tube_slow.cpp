@@ -6,7 +6,7 @@
 // the centroid (max over the nodes of |u - u_mean| / |u_mean|; zero for the pure translation
 // of the steady state) below 2% AND mu_eff / mu_0 changed by less than 2e-3 over the last 0.25
 // time units, at most to t = 8.
-// Measured at N = 16 (session 12, 2 threads, cell-free mu_eff = 1.00026; columns as below):
+// Measured at N = 16 (commit 46aedac, 2 threads, cell-free mu_eff = 1.00026; columns as below):
 //   U target  U_tube  mu_eff/mu_0  t at stop  steps  length  radius  slip at stop
 //   0.62      0.577   1.56884      6.85       5622   1.333   1.321   2.00e-02
 //   1.25      1.220   1.43098      6.15       5045   1.532   1.259   6.00e-03
@@ -14,7 +14,7 @@
 //   5.09      5.309   1.24590      3.87       3175   1.869   1.143   3.74e-03
 //   7.66      8.068   1.22016      3.16       2598   1.937   1.118   4.11e-03
 // all five steady, mu_eff falling with the flow rate: 2,818 s on 2 threads (test passes).
-// Why N = 16 (session 12): at N = 12 the two fastest cells did not settle. Measured after the
+// Why N = 16 (commit 46aedac): at N = 12 the two fastest cells did not settle. Measured after the
 // linear-part fix (commit 22fffd4; 2,332 s on 1 thread, cell-free mu_eff = 1.00026):
 //   U target  U_tube  mu_eff/mu_0  t at stop  steps  length  radius  slip at stop
 //   0.62      0.577   1.57378      6.66       3869   1.331   1.327   2.0e-2

@@ -1,6 +1,6 @@
 // The full relaxation test of section 9 (fig. 4; issue 7 validation 2, labelled slow): slow-mode
 // damping rates for l = 2..10, m = 2, lambda = 1 and 5, N = 12, dt = 1e-3, within 1% of the
-// secular equation (REFERENCES.md section 4). The paper reports < 0.2% at this resolution;
+// secular equation (docs/references.md section 4). The paper reports < 0.2% at this resolution;
 // l = 10 is the largest degree N = 12 resolves (its Cartesian components reach degree 11).
 // Free space: the theory is for an unbounded fluid (the paper's box of side 20 adds ~(a/L)^3).
 // Measured with the patch rule of 3 sqrt(N) radial points (11 x 22 at N = 12; 1 thread beside

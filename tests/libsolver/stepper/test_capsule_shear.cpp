@@ -1,4 +1,4 @@
-// Capsule in simple shear, free space (issue 7 validation 4; REFERENCES.md section 5):
+// Capsule in simple shear, free space (issue 7 validation 4; docs/references.md section 5):
 // a spherical neo-Hookean capsule, lambda = 1, in u = (gamma z, 0, 0). For Ca_G <= 0.05 the
 // steady Taylor deformation of the inertia ellipsoid (equal to the surface's to O(Ca)) follows
 // Barthes-Biesel & Rallison (1981), D = 25/12 Ca_G, and the long axis leans at

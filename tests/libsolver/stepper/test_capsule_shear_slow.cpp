@@ -1,7 +1,7 @@
 // Capsule in simple shear at Ca_G = 0.3 (issue 7 validation 4, the large-deformation point;
 // label slow): the spherical neo-Hookean capsule of test_capsule_shear.cpp, lambda = 1, reaches
 // a steady Taylor deformation. Published boundary-integral values for this case are near 0.39
-// (Ramanujan & Pozrikidis, JFM 361, 1998; Lac et al., JFM 516, 2004, REFERENCES.md section 5).
+// (Ramanujan & Pozrikidis, JFM 361, 1998; Lac et al., JFM 516, 2004, docs/references.md section 5).
 // N = 16, M = 32, AB2 (forward Euler inflates a tank-treading membrane by O(dt): the volume
 // drift of the fast test), half the limit (37) (AB2's real stability interval is half of
 // Euler's), twelve small-deformation relaxation times 1 / (0.248 G_s) = 4 Ca_G / gamma.

@@ -1,14 +1,14 @@
 // Sedimentation of a spherical capsule in a periodic box (issue: coupled solver, validation 1):
 // a uniform body-force density translates the sphere rigidly, for every viscosity ratio, with
 // the drag of a simple cubic array: K = F / (6 pi mu a U) = 1.53022 (L = 8), 1.38805 (L = 10)
-// (REFERENCES.md section 3). For lambda != 1 this needs the linear part of eq. (3).
+// (docs/references.md section 3). For lambda != 1 this needs the linear part of eq. (3).
 #include "libsolver/stepper/cell_velocity.h"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 
 using namespace rbcflow;
 

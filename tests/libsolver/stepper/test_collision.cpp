@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <limits>
 
-#include "geometry/reference_shapes.h"
-#include "geometry/surface_projection.h"
-#include "geometry/vessel.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/surface/surface_projection.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_stepper.h"
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/reference_shapes.h"
+#include "geometry/surface/reference_shapes.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_stepper.h"
 

@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/tube_drive.h"
 #include "libsolver/wall/tube_flow.h"

@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "geometry/reference_shapes.h"
-#include "geometry/vessel.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/wall/tube_flow.h"

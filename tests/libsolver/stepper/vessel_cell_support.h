@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/reference_shapes.h"
-#include "geometry/sh_surface.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/surface/sh_surface.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow::vessel_cell_test {

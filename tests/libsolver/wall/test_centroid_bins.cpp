@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <random>
 
-#include "geometry/vessel_mesh.h"
+#include "geometry/vessel/vessel_mesh.h"
 
 using namespace rbcflow;
 

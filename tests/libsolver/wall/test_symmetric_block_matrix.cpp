@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/wall/near_field.h"
 #include "libsolver/wall/wall_real_space.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/wall/wall_operator.h"
 
 using namespace rbcflow;

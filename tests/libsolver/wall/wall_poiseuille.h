@@ -6,7 +6,7 @@
 #include <memory>
 #include <numbers>
 
-#include "geometry/vessel.h"
+#include "geometry/vessel/vessel.h"
 #include "libsolver/wall/tube_flow.h"
 #include "libsolver/wall/wall_solver.h"
 

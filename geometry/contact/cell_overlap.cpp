@@ -1,0 +1,110 @@
+#include "geometry/contact/cell_overlap.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+namespace rbcflow {
+namespace {
+
+// The surface itself (no truncation) sampled on check_order Gauss colatitudes; the longitudes
+// as many as the reference's order needs.
+TriangleMesh centred_mesh(const SHSurface& reference, int check_order, const Eigen::Vector3d& centroid) {
+  const int n_phi = 2 * std::max(check_order, reference.order());
+  TriangleMesh m = reference.triangulate(SHTransform(reference.order(), SphGrid::gauss(check_order, n_phi), 0));
+  m.points.rowwise() -= centroid.transpose();
+  return m;
+}
+
+// On the grid of order 2N: the integrands of the volume moments are products of three fields.
+Eigen::Vector3d reference_centroid(const SHSurface& reference) {
+  return volume_centroid(reference.geometry(SHTransform::gauss(2 * reference.order())));
+}
+
+}  // namespace
+
+CellOverlap::Body::Body(const SHSurface& surface, int check_order)
+    : centroid(reference_centroid(surface)),
+      mesh(centred_mesh(surface, check_order, centroid)),
+      radius(mesh.points.rowwise().norm().maxCoeff()),
+      tree(mesh) {
+  normals.resize(mesh.num_triangles(), 3);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Eigen::Vector3d p0 = mesh.points.row(mesh.triangles(t, 0)).transpose();
+    normals.row(t) = (mesh.points.row(mesh.triangles(t, 1)).transpose() - p0)
+                         .cross(mesh.points.row(mesh.triangles(t, 2)).transpose() - p0)
+                         .transpose();
+  }
+}
+
+CellOverlap::CellOverlap(const SHSurface& reference, int check_order, const Eigen::Vector3d& period,
+                         const WallDistance* wall, double gap)
+    : period_(period), wall_(wall), gap_(gap) {
+  bodies_.emplace_back(reference, check_order);
+}
+
+CellOverlap::CellOverlap(const std::vector<SHSurface>& bodies, int check_order, const Eigen::Vector3d& period,
+                         const WallDistance* wall, double gap)
+    : period_(period), wall_(wall), gap_(gap) {
+  bodies_.reserve(bodies.size());
+  for (const SHSurface& s : bodies) bodies_.emplace_back(s, check_order);
+}
+
+// Every vertex of b (moved by `shift`) outside a and at least gap from a's triangles. The
+// vertices are checked by all threads (placement runs thousands of these tests one after
+// another); the first failure stops the others' remaining checks.
+bool CellOverlap::vertices_apart(const CellPose& a, const CellPose& b, const Eigen::Vector3d& shift) const {
+  const Body& body_a = bodies_[a.body];
+  const TriangleMesh& mesh_b = bodies_[b.body].mesh;
+  const Eigen::Matrix3d to_a = a.rotation.transpose() / a.scale;
+  const double reach = body_a.radius + gap_ / a.scale;
+  std::atomic<bool> apart{true};
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < mesh_b.num_points(); ++v) {
+    if (!apart.load(std::memory_order_relaxed)) continue;
+    const Eigen::Vector3d x = b.rotation * (b.scale * mesh_b.points.row(v).transpose()) + b.position + shift;
+    const Eigen::Vector3d y = to_a * (x - a.position);  // in a's unscaled body frame
+    if (y.norm() > reach) continue;
+    const TriangleAabbTree::ClosestPoint c = body_a.tree.closest_point(y);
+    if (c.distance * a.scale < gap_ || (y - c.point).dot(body_a.normals.row(c.triangle).transpose()) < 0)
+      apart.store(false, std::memory_order_relaxed);
+  }
+  return apart;
+}
+
+bool CellOverlap::apart(const CellPose& a, const CellPose& b, bool same) const {
+  const Eigen::Vector3d d = b.position - a.position;
+  std::vector<Eigen::Vector3d> shifts{minimum_image(d, period_) - d};
+  for (int k = 0; k < 3; ++k) {
+    if (period_[k] <= 0) continue;
+    const std::size_t n = shifts.size();
+    for (int s : {-1, 1})
+      for (std::size_t i = 0; i < n; ++i) shifts.push_back(shifts[i] + s * period_[k] * Eigen::Vector3d::Unit(k));
+  }
+  for (const Eigen::Vector3d& shift : shifts) {
+    if (same && shift.isZero()) continue;
+    if ((d + shift).norm() >= bodies_[a.body].radius * a.scale + bodies_[b.body].radius * b.scale + gap_) continue;
+    if (!vertices_apart(a, b, shift) || !vertices_apart(b, a, -shift)) return false;
+  }
+  return true;
+}
+
+bool CellOverlap::inside_wall(const CellPose& a) const {
+  if (!wall_) return true;
+  const TriangleMesh& mesh = bodies_[a.body].mesh;
+  const double centre = wall_->closest(a.position).signed_distance;
+  if (centre >= bodies_[a.body].radius * a.scale + gap_) return true;
+  if (centre <= 0) return false;
+  std::atomic<bool> inside{true};  // threads as in vertices_apart
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < mesh.num_points(); ++v) {
+    if (!inside.load(std::memory_order_relaxed)) continue;
+    const Eigen::Vector3d x = a.rotation * (a.scale * mesh.points.row(v).transpose()) + a.position;
+    if (wall_->closest(x).signed_distance < gap_) inside.store(false, std::memory_order_relaxed);
+  }
+  return inside;
+}
+
+}  // namespace rbcflow

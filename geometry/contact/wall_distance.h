@@ -1,0 +1,38 @@
+#pragma once
+// Signed distance from points to a vessel wall, positive in the lumen (the side the wall
+// normals point to, vessel_mesh.h), by a CGAL AABB tree over the wall triangles. A wall periodic
+// along box axes is unwrapped and copied once to each side along those axes, and queries are
+// wrapped into the box first, so that points anywhere (cells are not wrapped) get the distance
+// to the nearest periodic image of the wall.
+#include <Eigen/Core>
+
+#include "geometry/cgal/aabb_tree.h"
+#include "geometry/vessel/vessel_mesh.h"
+
+namespace rbcflow {
+
+class WallDistance {
+ public:
+  explicit WallDistance(const VesselMesh& wall);
+
+  struct Query {
+    Eigen::Vector3d point;         // closest wall point (the image next to the query)
+    Eigen::Vector3d normal;        // unit normal of its triangle, into the lumen
+    double signed_distance = 0.0;  // > 0 in the lumen, < 0 beyond the wall
+  };
+  Query closest(const Eigen::Vector3d& x) const;
+
+  const Eigen::Vector3d& period() const { return period_; }
+
+ private:
+  Eigen::Vector3d period_;
+  TriangleMesh images_;  // unwrapped triangles and their periodic copies
+  TriangleAabbTree tree_;
+};
+
+// Volume of the lumen enclosed by `wall` (one period along its periodic axes): the divergence
+// theorem with the field x_k / K over the K non-periodic axes k, whose flux through the cut
+// faces at the box ends vanishes. Throws when the wall is periodic along all three axes.
+double lumen_volume(const VesselMesh& wall);
+
+}  // namespace rbcflow

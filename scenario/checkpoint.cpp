@@ -1,0 +1,65 @@
+#include "scenario/checkpoint.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace rbcflow {
+namespace {
+
+class CheckpointOut : public StateArchive {
+ public:
+  explicit CheckpointOut(CheckpointWriter& w) : w_(w) {}
+  bool reading() const override { return false; }
+  void real(const std::string& name, double& x) override { w_.put(name, x); }
+  void integer(const std::string& name, long& x) override { w_.put(name, static_cast<long long>(x)); }
+  void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
+    if (required || x.size()) w_.put(name, x);
+  }
+
+ private:
+  CheckpointWriter& w_;
+};
+
+// Checkpoint's accessors throw CheckpointError naming the file and the item for what is
+// absent or of another type.
+class CheckpointIn : public StateArchive {
+ public:
+  explicit CheckpointIn(const Checkpoint& k) : k_(k) {}
+  bool reading() const override { return true; }
+  void real(const std::string& name, double& x) override { x = k_.real(name); }
+  void integer(const std::string& name, long& x) override { x = static_cast<long>(k_.integer(name)); }
+  void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
+    x = required || k_.has(name) ? k_.matrix(name) : Eigen::MatrixXd();
+  }
+
+ private:
+  const Checkpoint& k_;
+};
+
+}  // namespace
+
+void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
+  CheckpointWriter w(case_fingerprint(c));
+  w.put("state_version", static_cast<long long>(kCheckpointStateVersion));
+  CheckpointOut out(w);
+  stepper.save(out);
+  w.write(file);
+}
+
+void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
+  const Checkpoint k = Checkpoint::read(file, case_fingerprint(c));
+  const long long version = k.has("state_version") ? k.integer("state_version") : 1;
+  if (version < 1 || version > kCheckpointStateVersion) {
+    throw CheckpointError(file.string() + ": checkpoint state version " + std::to_string(version) +
+                          "; this rbcflow reads state versions 1 to " + std::to_string(kCheckpointStateVersion) +
+                          " (written by a newer rbcflow?)");
+  }
+  CheckpointIn in(k);
+  try {
+    stepper.load(in);
+  } catch (const std::invalid_argument& e) {
+    throw CheckpointError(file.string() + ": " + e.what());
+  }
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,23 @@
+#pragma once
+// A run's checkpoint: the stepper's own items (CellStepper::save, StepperState::archive) in an
+// HDF5 file (io/checkpoint.h) under the case's fingerprint, with the version of their layout,
+// `state_version`. Version 1 (no such item) and 2 read alike; 2 no longer carries the cells'
+// reference shapes, which nothing read.
+#include <filesystem>
+
+#include "io/case.h"
+#include "io/checkpoint.h"
+#include "libsolver/stepper/cell_stepper.h"
+
+namespace rbcflow {
+
+inline constexpr long kCheckpointStateVersion = 2;
+
+// Written atomically (io/checkpoint.h); throws std::runtime_error naming the file when it
+// cannot be.
+void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+// Reads a checkpoint of this case into the stepper; throws CheckpointError (exit 2) naming the
+// file when it does not fit the case or has a format this build does not read.
+void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+
+}  // namespace rbcflow

@@ -1,0 +1,130 @@
+#include "scenario/run_output.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "geometry/surface/inertia_ellipsoid.h"
+#include "geometry/vessel/vessel_mesh.h"
+#include "io/xdmf_writer.h"
+#include "libsolver/wall/tube_flow.h"
+
+namespace rbcflow {
+
+namespace {
+
+// A grid field with the two pole points that triangulate() appends: the mean of the nearest
+// ring of the grid (first and last rows of a Gauss grid).
+Eigen::MatrixXd with_poles(const Eigen::MatrixXd& grid_values, const SphGrid& grid) {
+  const int n = static_cast<int>(grid_values.rows()), ring = grid.n_phi();
+  Eigen::MatrixXd out(n + 2, grid_values.cols());
+  out.topRows(n) = grid_values;
+  out.row(n) = grid_values.topRows(ring).colwise().mean();
+  out.row(n + 1) = grid_values.bottomRows(ring).colwise().mean();
+  return out;
+}
+
+}  // namespace
+
+std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s) {
+  std::vector<Surface> surfaces;
+  const auto& cells = stepper.cells();
+  if (!cells.empty()) {
+    const SHTransform& t = *stepper.grids().n_grid;
+    const int np = t.grid().size();
+    std::vector<Surface> parts;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const MembraneState& m = s.membrane[c];
+      Surface part{"cell", cells[c].shape.triangulate(t), {}};
+      const Eigen::MatrixXd tension = 0.5 * m.principal_tension.rowwise().sum();
+      part.fields = {{"velocity", with_poles(s.velocity.middleRows(c * np, np), t.grid())},
+                     {"force", with_poles(s.traction.middleRows(c * np, np), t.grid())},
+                     {"tension", with_poles(tension, t.grid())},
+                     {"max_tension", with_poles(m.principal_tension.col(0), t.grid())},
+                     {"J_S", with_poles(m.dilatation, t.grid())}};
+      parts.push_back(std::move(part));
+    }
+    surfaces.push_back(merge_surfaces("cells", parts));
+  }
+  if (const WallCoupling* wall = stepper.wall()) {
+    // Drawn without triangles across the box: nodes on the far side of a face are copies,
+    // whose traction is their original node's.
+    const TriangleMesh& mesh = wall->elements().wall.surface;
+    Surface w{"wall", drawable_surface(wall->elements().wall), {}};
+    Eigen::MatrixXd traction(w.mesh.num_points(), 3);
+    traction.topRows(mesh.num_points()) = s.wall_force;
+    for (int t = 0; t < mesh.num_triangles(); ++t)
+      for (int a = 0; a < 3; ++a) traction.row(w.mesh.triangles(t, a)) = s.wall_force.row(mesh.triangles(t, a));
+    w.fields = {{"traction", traction}};
+    surfaces.push_back(std::move(w));
+  }
+  return surfaces;
+}
+
+std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear) {
+  std::vector<CellRow> rows;
+  if (stepper.cells().empty()) return rows;
+  const SHTransform& t = *stepper.grids().n_grid;
+  const int np = t.grid().size();
+  for (std::size_t c = 0; c < stepper.cells().size(); ++c) {
+    const SurfaceGeometry g = stepper.cells()[c].shape.geometry(t);
+    const Eigen::Vector3d centre = volume_centroid(g);
+    const Eigen::Vector3d u =
+        (s.velocity.middleRows(c * np, np).transpose() * g.area_weight) / g.area_weight.sum();
+    const InertiaEllipsoid e = inertia_ellipsoid(g);
+    const Eigen::Vector3d longest = e.axes.col(2);
+    double inclination = 0;
+    if (shear) {
+      inclination = std::atan2(longest.z(), longest.x());
+      if (inclination > std::numbers::pi / 2) inclination -= std::numbers::pi;
+      if (inclination <= -std::numbers::pi / 2) inclination += std::numbers::pi;
+    } else {
+      inclination = std::acos(std::min(1.0, std::abs(longest[flow_axis])));
+    }
+    rows.push_back({stepper.steps(), stepper.time(), static_cast<int>(c), {centre.x(), centre.y(), centre.z()},
+                    {u.x(), u.y(), u.z()}, enclosed_volume(g), surface_area(g), e.taylor_deformation(), inclination});
+  }
+  return rows;
+}
+
+DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, const Scenario& s, double seconds) {
+  const Case& c = s.c;
+  DiagnosticsRow row;
+  row.step = stepper.steps();
+  row.time = stepper.time();
+  row.dt = stepper.dt();
+  row.mean_velocity = {r.mean_velocity.x(), r.mean_velocity.y(), r.mean_velocity.z()};
+  row.pressure_gradient = {r.pressure_gradient.x(), r.pressure_gradient.y(), r.pressure_gradient.z()};
+  if (s.tube_radius) {
+    const int a = c.vessel->axis;
+    const double side = c.domain.box[(a + 1) % 3];
+    if (side == c.domain.box[(a + 2) % 3]) {  // (45) is for a square cross-section
+      row.effective_viscosity =
+          tube_effective_viscosity(*s.tube_radius, side, r.mean_velocity[a], r.pressure_gradient[a]);
+    }
+  }
+  if (!stepper.cells().empty()) row.tube_hematocrit = s.tube_hematocrit;
+  row.max_volume_error = r.max_volume_error;
+  row.max_area_error = r.max_area_error;
+  row.gmres_cells = r.gmres_iterations;
+  if (stepper.wall()) {
+    row.gmres_wall = r.gmres_wall;
+    row.wall_residual = r.wall_residual;
+  }
+  row.seconds = seconds;
+  if (c.time.collision_threshold > 0 && !stepper.cells().empty()) {
+    row.collision_pairs = r.collision_pairs;
+    row.wall_contacts = r.wall_contacts;
+    row.collision_displacement = r.collision_displacement;
+  }
+  return row;
+}
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir, long step) {
+  return dir / "checkpoints" / ("step_" + step_label(step) + ".h5");
+}
+
+std::filesystem::path render_path(const std::filesystem::path& dir, long step) {
+  return dir / "renders" / ("step_" + step_label(step) + ".png");
+}
+
+}  // namespace rbcflow

@@ -1,0 +1,151 @@
+#include "scenario/scenario.h"
+
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "geometry/contact/wall_distance.h"
+#include "libsolver/membrane/membrane_law.h"
+#include "libsolver/operators/cell_layers.h"
+#include "scenario/cell_layout.h"
+#include "scenario/derived.h"
+#include "scenario/vessel.h"
+
+namespace rbcflow {
+
+namespace {
+
+Eigen::Vector3d to_eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+
+std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background(const BackgroundFlow& b) {
+  const double rate = b.rate;
+  switch (b.kind) {
+    case FlowKind::shear: return [rate](const Eigen::Vector3d& x) { return Eigen::Vector3d(rate * x.z(), 0, 0); };
+    case FlowKind::extensional:
+      return [rate](const Eigen::Vector3d& x) { return Eigen::Vector3d(rate * x.x(), -rate * x.y(), 0); };
+    case FlowKind::none: break;
+  }
+  return [](const Eigen::Vector3d&) { return Eigen::Vector3d::Zero().eval(); };
+}
+
+// The tube velocity is measured on the vessel's axis (the box centre in the cross-section)
+// where it is straight: anywhere in a tube, half a period from a constriction's neck.
+TubeDrive tube_drive(const Case& c) {
+  const CaseVessel& v = *c.vessel;  // the parser allows tube_velocity with a tube or constriction only
+  TubeDrive d;
+  d.velocity = *c.domain.tube_velocity;
+  d.axis = v.axis;
+  d.axis_point = 0.5 * to_eigen(c.domain.box);
+  const double length = c.domain.box[v.axis];
+  d.axis_point[v.axis] = v.kind == VesselKind::constriction ? std::fmod(v.center + 0.5 * length, length) : 0.0;
+  return d;
+}
+
+// The solver chooses alpha, cutoff, grid and spline order for each of its sums from the
+// tolerance; a hand-set value would be silently ignored, so it is refused.
+void refuse_ewald_overrides(const Case& c) {
+  for (const auto& [key, set] : {std::pair{"ewald.alpha", c.ewald.alpha.has_value()},
+                                 std::pair{"ewald.cutoff", c.ewald.cutoff.has_value()},
+                                 std::pair{"ewald.grid", c.ewald.grid.has_value()},
+                                 std::pair{"ewald.spline_order", c.ewald.spline_order.has_value()}}) {
+    if (set) {
+      throw case_error(c, key, "rbcflow does not take expert Ewald overrides yet; remove it (the solver "
+                               "chooses every Ewald parameter from ewald.tolerance: see rbcflow check)");
+    }
+  }
+}
+
+CellStepperOptions solver_options(const Case& c) {
+  CellStepperOptions o;
+  o.dt = time_step(c);
+  o.scheme = c.time.scheme == TimeSchemeKind::ab2 ? TimeScheme::ab2 : TimeScheme::euler;
+  o.viscosity_ratio = c.domain.viscosity_ratio;
+  o.gmres_tolerance = c.solver.gmres_tolerance;
+  o.gmres_max_iterations = c.solver.max_iterations;
+  o.quadrature.radial_points = c.solver.patch_radial_points.value_or(0);
+  o.volume_constraint = c.time.volume_constraint;
+  o.wall_solve.tolerance = c.solver.gmres_tolerance;
+  o.domain.ewald_tolerance = c.ewald.tolerance;
+  if (c.domain.kind == DomainKind::periodic) {
+    o.domain.box = PeriodicBox(to_eigen(c.domain.box));
+    if (c.domain.mean_velocity) o.mean_velocity = to_eigen(*c.domain.mean_velocity);
+    if (c.domain.pressure_gradient) o.pressure_gradient = to_eigen(*c.domain.pressure_gradient);
+    if (c.domain.tube_velocity) o.tube_drive = tube_drive(c);
+  } else {
+    o.background = background(c.domain.background_flow);
+  }
+  o.collision_threshold = c.time.collision_threshold;
+  return o;
+}
+
+// The sums the solver will set up, each chosen from ewald.tolerance for its node count as
+// libsolver's operators choose them; a tolerance too tight for the size is refused here.
+std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes) try {
+  std::vector<EwaldSum> sums;
+  const PeriodicBox box(to_eigen(c.domain.box));
+  const double tolerance = c.ewald.tolerance;
+  auto add = [&](const char* what, EwaldKernel kernel, long nodes, const RealSpaceUse& real_space) {
+    sums.push_back({what, nodes, choose_ewald_parameters(kernel, tolerance, box, nodes, nodes, real_space)});
+  };
+  if (cell_nodes > 0) {
+    add("cells, single layer", EwaldKernel::stokeslet, cell_nodes, {});
+    if (c.domain.viscosity_ratio != 1.0) {
+      add("cells, double layer", EwaldKernel::stresslet, cell_nodes, kDoubleLayerRealSpace);
+    }
+  }
+  if (wall_nodes > 0) add("wall, single layer", EwaldKernel::stokeslet, wall_nodes, {});
+  return sums;
+} catch (const std::invalid_argument& e) {
+  // The chooser's limits on grid points and real-space pairs.
+  throw case_error(c, "ewald.tolerance", e.what());
+}
+
+}  // namespace
+
+Scenario prepare_scenario(const Case& c) {
+  refuse_ewald_overrides(c);
+  Scenario s;
+  s.c = c;
+  s.options = solver_options(c);
+  s.steps = std::max(1L, static_cast<long>(std::ceil(c.time.end / s.options.dt - 1e-9)));
+  if (c.vessel) {
+    s.vessel = build_vessel(c);
+    s.lumen_volume = lumen_volume(*s.vessel);
+    if (c.vessel->kind == VesselKind::tube) s.tube_radius = 0.5 * c.vessel->diameter;
+  }
+  const long wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;
+  if (!c.cells) {
+    if (c.domain.kind == DomainKind::periodic) s.ewald = ewald_sums(c, 0, wall_nodes);
+    return s;
+  }
+  const CaseCells& k = *c.cells;
+  s.grids = CellGrids::make(k.order, k.dealias * k.order);
+  InitialCells placed = initial_cells(c, s.vessel ? &*s.vessel : nullptr);
+  s.placement_note = placed.note;
+  const std::shared_ptr<const MembraneLaw> law =
+      make_membrane_law(to_string(k.membrane.law), k.membrane.shear_modulus, k.membrane.dilatation_modulus);
+  double cells_volume = 0;
+  for (std::size_t i = 0; i < placed.rest.size(); ++i) {
+    Cell cell;
+    cell.membrane = std::make_shared<const Membrane>(placed.rest[i], s.grids,
+                                                     MembraneParameters{law, k.membrane.bending_modulus});
+    cell.shape = std::move(placed.initial[i]);
+    cell.body_force = to_eigen(k.body_force);
+    cells_volume += enclosed_volume(cell.shape.geometry(*s.grids->n_grid));
+    s.cells.push_back(std::move(cell));
+  }
+  if (s.lumen_volume) s.tube_hematocrit = cells_volume / *s.lumen_volume;
+  if (c.domain.kind == DomainKind::periodic) {
+    s.ewald = ewald_sums(c, static_cast<long>(s.cells.size()) * s.grids->n_grid->grid().size(), wall_nodes);
+  }
+  return s;
+}
+
+std::unique_ptr<CellStepper> make_stepper(Scenario& s) {
+  if (s.vessel) s.options.wall = std::make_shared<const WallElements>(*s.vessel);
+  return std::make_unique<CellStepper>(std::move(s.cells), s.grids, s.options);
+}
+
+}  // namespace rbcflow

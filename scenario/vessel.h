@@ -1,0 +1,13 @@
+#pragma once
+// The vessel of a case, meshed: the one translation from the [vessel] keys to the geometry
+// builders (scenario.h builds it for run and check; `rbcflow mesh` calls it alone).
+#include "geometry/vessel/vessel_mesh.h"
+#include "io/case.h"
+
+namespace rbcflow {
+
+// Throws CaseError (exit 2) when the case has no vessel or the builder rejects it (an
+// infeasible layout, a bad mesh file), naming [vessel] or vessel.path.
+VesselMesh build_vessel(const Case& c);
+
+}  // namespace rbcflow

@@ -1,0 +1,116 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "geometry/vessel/mesh_check.h"
+#include "geometry/vessel/mesh_orientation.h"
+#include "geometry/vessel/vessel.h"
+
+using namespace rbcflow;
+
+namespace {
+
+// data/cases/bifurcation.toml: parent D = 3, daughters 2.4 and 2.2 at 60 degrees, split at
+// z = 5 in a 12 x 6 x 16 box; a coarser element size for speed.
+BifurcationSpec example(double h = 0.3) {
+  BifurcationSpec s;
+  s.tube.diameter = 3.0;
+  s.tube.axis = 2;
+  s.tube.box = Eigen::Vector3d(12.0, 6.0, 16.0);
+  s.tube.element_size = h;
+  s.daughter_diameters = {2.4, 2.2};
+  s.angle_deg = 60.0;
+  s.centre = 5.0;
+  return s;
+}
+
+double lateral_distance(const Eigen::Vector3d& x, const Eigen::Vector2d& axis) {
+  return (x.head<2>() - axis).norm();
+}
+
+void expect_invalid(const BifurcationSpec& s, const std::string& words) {
+  try {
+    bifurcation_layout(s);
+    FAIL() << "no error, expected one about " << words;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+// A closed, consistently oriented wall (check_mesh passed inside the builder) with normals into
+// the lumen; parent nodes on the parent's cylinder and daughter nodes on the daughters' in the
+// parallel part of the loop, both exact surfaces of the CAD model (OCC tolerance 1e-7).
+TEST(Bifurcation, ExampleCaseWallLiesOnItsSurfaces) {
+  const BifurcationSpec s = example();
+  const BifurcationLayout l = bifurcation_layout(s);
+  const VesselMesh wall = bifurcation(s);
+  const MeshQuality q = check_mesh(wall);
+  std::printf("bifurcation h = %.2f: %d nodes, %d triangles, min angle %.1f deg, area %.2f, lumen volume %.2f\n",
+              s.tube.element_size, wall.surface.num_points(), wall.surface.num_triangles(), q.min_angle_deg, q.area,
+              -0.5 * lumen_flux(wall));
+  EXPECT_EQ(wall.period, Eigen::Vector3d(0, 0, 16.0));
+  EXPECT_LT(lumen_flux(wall), 0.0);  // normals into the lumen
+  EXPECT_GT(q.min_angle_deg, 10.0);
+  EXPECT_LT(q.max_edge, 2.0 * s.tube.element_size);
+
+  const double R = 1.5, r0 = 1.2, r1 = 1.1, split = 5.0, merge = 13.0;
+  const Eigen::Vector2d axis(6.0, 3.0);
+  const double loop_middle = 0.5 * (split + merge);
+  int on_parent = 0, on_daughters = 0;
+  double widest = 0;
+  for (int i = 0; i < wall.surface.num_points(); ++i) {
+    const Eigen::Vector3d x = wall.surface.points.row(i);
+    ASSERT_GE(x[2], 0.0);
+    ASSERT_LT(x[2], 16.0);
+    widest = std::max(widest, std::abs(x[0] - axis[0]));
+    // Away from the junction spheres (radius R around the split and merge points).
+    if (x[2] < split - R || x[2] > merge + R) {
+      EXPECT_NEAR(lateral_distance(x, axis), R, 1e-6 * R) << x.transpose();
+      ++on_parent;
+    }
+    if (std::abs(x[2] - loop_middle) < 0.5 * l.parallel[0]) {
+      const bool first = x[0] > axis[0];
+      const Eigen::Vector2d centre(axis[0] + (first ? 1 : -1) * l.offset, axis[1]);
+      EXPECT_NEAR(lateral_distance(x, centre), first ? r0 : r1, 1e-6 * R) << x.transpose();
+      ++on_daughters;
+    }
+  }
+  EXPECT_GT(on_parent, 100);
+  EXPECT_GT(on_daughters, 20);
+  // The widest point is the first (larger) daughter's outer wall.
+  EXPECT_NEAR(widest, l.offset + r0, 0.02);
+}
+
+// The split at `centre` is only a shift along the axis: the same mesh, wrapped through the box.
+TEST(Bifurcation, CentreShiftsTheWallThroughTheBox) {
+  BifurcationSpec a = example(0.4), b = example(0.4);
+  b.centre = 8.0;  // the default: half the box; the loop crosses the box face
+  const VesselMesh wa = bifurcation(a), wb = bifurcation(b);
+  ASSERT_EQ(wa.surface.num_triangles(), wb.surface.num_triangles());
+  ASSERT_EQ(wa.surface.num_points(), wb.surface.num_points());
+  EXPECT_NEAR(wa.surface.points.col(2).maxCoeff(), wb.surface.points.col(2).maxCoeff(), 0.5);
+  EXPECT_NEAR(lumen_flux(wa), lumen_flux(wb), 1e-9 * std::abs(lumen_flux(wa)));
+  const MeshQuality qa = check_mesh(wa), qb = check_mesh(wb);
+  EXPECT_NEAR(qa.area, qb.area, 1e-9 * qa.area);
+}
+
+TEST(Bifurcation, InfeasibleLayoutsNameTheValue) {
+  BifurcationSpec s = example();
+  s.daughter_diameters = {3.0, 2.0};
+  expect_invalid(s, "daughter diameter 3 must be in (0, 3)");
+  s = example();
+  s.angle_deg = 10.0;  // a shallow angle needs a long loop
+  expect_invalid(s, "or widen the angle");
+  s = example();
+  s.tube.box[0] = 5.5;
+  expect_invalid(s, "the box gives 2.75 (half its side x)");
+  s = example();
+  s.tube.box[2] = 5.0;
+  expect_invalid(s, "must exceed twice the parent diameter");
+}

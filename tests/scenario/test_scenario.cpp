@@ -1,0 +1,130 @@
+// prepare_scenario: the meshed lumen's volume against closed forms, the hematocrit -> count rule
+// on it, listed cells checked against the wall of every vessel kind (perturbation applied), and
+// the refusals that run and check share.
+#include "scenario/scenario.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "geometry/vessel/vessel.h"
+
+using namespace rbcflow;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// The message of the CaseError prepare_scenario throws, or "" when it accepts the case.
+std::string refusal(const std::string& text) {
+  try {
+    prepare_scenario(parse_case(text, "s.toml"));
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A linear mesh inscribed in a round lumen of radius R with elements of size h loses the
+// fraction (h / R)^2 / 6 of its cross-section (a regular polygon of edge h); twice that bounds
+// the volume's relative error.
+double inscribed_tolerance(double h, double radius) { return 2.0 * (h / radius) * (h / radius) / 6.0; }
+
+const std::string kTube = "[domain]\nbox = [6.6, 6.6, 12]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 6\n";
+
+}  // namespace
+
+TEST(Scenario, LumenVolumeOfATubeAndOfTheConstrictionFromTheirMeshes) {
+  const Scenario tube = prepare_scenario(parse_case(kTube, "t.toml"));
+  const double exact = pi * 9 * 12;
+  EXPECT_NEAR(*tube.lumen_volume, exact, inscribed_tolerance(0.25, 3) * exact);
+  EXPECT_LT(*tube.lumen_volume, exact);  // inscribed
+  // The paper's constriction d = 3.5 - 2.2 exp(-1.2 (z - 5)^2) over [0, 10]; its volume in
+  // closed form (the Gaussian's tails beyond 5 = 5.5 standard deviations are below 1e-12):
+  // pi/4 (D^2 L - 2 D depth sqrt(pi/w) + depth^2 sqrt(pi/(2w))).
+  const Scenario neck = prepare_scenario(parse_case(
+      "[domain]\nbox = [6, 6, 10]\nmean_velocity = [0, 0, 2]\n[vessel]\nkind = \"constriction\"\n"
+      "diameter = 3.5\ndepth = 2.2\nwidth = 1.2\ncenter = 5.0\nelement_size = 0.1\n",
+      "c.toml"));
+  const double neck_exact = pi / 4 * (3.5 * 3.5 * 10 - 2 * 3.5 * 2.2 * std::sqrt(pi / 1.2) + 2.2 * 2.2 * std::sqrt(pi / 2.4));
+  EXPECT_NEAR(*neck.lumen_volume, neck_exact, inscribed_tolerance(0.1, 0.65) * neck_exact);
+  EXPECT_FALSE(prepare_scenario(parse_case("[domain]\nbox = [6, 6, 10]\nmean_velocity = [0, 0, 2]\n", "n.toml"))
+                   .lumen_volume);
+}
+
+TEST(Scenario, GmshMeshesTheTubeOfTheMemoryModel) {
+  // gmsh meshes a D = 3.5, length 10 tube at h = 0.25 into 4,136 triangles, 2,068 nodes (the
+  // count the memory model of rbcflow check is calibrated with).
+  const Scenario s = prepare_scenario(
+      parse_case("[domain]\nbox = [6, 6, 10]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 3.5\n", "m.toml"));
+  EXPECT_NEAR(s.vessel->surface.num_points(), 2068, 0.05 * 2068);
+}
+
+TEST(Scenario, HematocritBecomesACountOnTheMeshedLumen) {
+  // H = 0.3 in a D = 6, L = 12 tube: 0.3 x 339.3 / 4.18879 = 24.3 cells; the tube hematocrit of
+  // 24 cells is then within half a cell's share of the lumen of what was asked.
+  const Scenario h = prepare_scenario(parse_case(kTube + "element_size = 0.5\n[cells]\nhematocrit = 0.3\norder = 8\n",
+                                                 "h.toml"));
+  EXPECT_EQ(h.cells.size(), 24u);
+  EXPECT_NEAR(*h.tube_hematocrit, 0.3, 0.5 * (4 * pi / 3) / *h.lumen_volume);
+  // Section 11.1: two cells 2 apart in a D = 3.2 tube give a tube hematocrit of about 26%.
+  const Scenario pair = prepare_scenario(parse_case(
+      "[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 3.2\n[cells]\norder = 8\n"
+      "positions = [[2, 2, 1], [2, 2, 3]]\norientations = [[0, 0, 1], [0, 0, 1]]\n",
+      "p.toml"));
+  EXPECT_NEAR(*pair.tube_hematocrit, 0.26, 0.005);
+}
+
+TEST(Scenario, ListedCellThroughTheWallOfEveryVesselKindIsRefused) {
+  // A red cell (radius 1.39) lying across a D = 3 vessel (radius 1.5): on the axis it fits, 1.0
+  // off it it reaches through the wall.
+  auto cells = [](double x) {
+    return "[cells]\norder = 8\npositions = [[" + std::to_string(x) + ", 3.0, 2.0]]\norientations = [[0, 0, 1]]\n";
+  };
+  const std::string box = "[domain]\nbox = [12, 6, 16]\nmean_velocity = [0, 0, 1]\n";
+  const std::string bifurcation =
+      box + "[vessel]\nkind = \"bifurcation\"\ndiameter = 3\ndaughter_diameters = [2.4, 2.2]\nangle_deg = 60\n"
+            "center = 8\nelement_size = 0.3\n";
+  const std::string constriction =
+      box + "[vessel]\nkind = \"constriction\"\ndiameter = 3\ndepth = 1\nwidth = 1\ncenter = 8\nelement_size = 0.3\n";
+  TubeSpec t;
+  t.diameter = 3;
+  t.box = Eigen::Vector3d(6, 6, 16);
+  t.element_size = 0.3;
+  const std::filesystem::path msh = std::filesystem::temp_directory_path() / "rbcflow_test_scenario_tube.msh";
+  write_vessel(tube(t), msh.string());
+  const std::string file = "[domain]\nbox = [6, 6, 16]\nmean_velocity = [0, 0, 1]\n[vessel]\nkind = \"file\"\n"
+                           "path = \"" + msh.string() + "\"\n";
+  for (const auto& [vessel, axis_x] : {std::pair{bifurcation, 6.0}, std::pair{constriction, 6.0}, std::pair{file, 3.0}}) {
+    const std::string e = refusal(vessel + cells(axis_x - 1.0));
+    EXPECT_NE(e.find("cells.positions: cell 0 at [" + std::to_string(axis_x - 1.0).substr(0, 1) +
+                     ", 3, 2] crosses the vessel wall"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(refusal(vessel + cells(axis_x)), "") << vessel;
+  }
+  std::filesystem::remove(msh);
+}
+
+TEST(Scenario, PerturbationIsAppliedBeforeTheWallCheck) {
+  // A unit sphere on the axis of a D = 2.2 tube clears the wall by 0.1 (less the mesh's sagitta,
+  // 0.2^2 / 8.8 = 0.005). Perturbed by 0.3 Y_2,2 (of unit mean square: sqrt(15/4) sin^2(theta)
+  // cos(2 phi), 1.94 at its largest, on the equator, here across the axis) its surface moves 0.58
+  // out through the wall.
+  const std::string base =
+      "[domain]\nbox = [4, 4, 6]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 2.2\nelement_size = 0.2\n"
+      "[cells]\nshape = \"sphere\"\norder = 8\npositions = [[2.0, 2.0, 3.0]]\norientations = [[0, 0, 1]]\n";
+  EXPECT_EQ(refusal(base), "");
+  EXPECT_NE(refusal(base + "perturbation = { l = 2, m = 2, amplitude = 0.3 }\n").find("crosses the vessel wall"),
+            std::string::npos);
+}
+
+TEST(Scenario, ExpertEwaldOverridesAreRefusedByName) {
+  EXPECT_NE(refusal(kTube + "[ewald]\nalpha = 2.0\n").find("s.toml:7: ewald.alpha: rbcflow does not take expert Ewald"),
+            std::string::npos)
+      << refusal(kTube + "[ewald]\nalpha = 2.0\n");
+}
