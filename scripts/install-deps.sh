@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev libfftw3-dev libgmsh-dev gmsh libvtk9-dev libcgal-dev libhdf5-dev libboost-dev
   libgtest-dev libbenchmark-dev libtoml11-dev
   xvfb xauth
+  clang libclang-rt-14-dev
+
 )
 
 missing=()

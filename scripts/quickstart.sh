@@ -6,10 +6,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRBCFLOW_WERROR=ON   # as scripts/test.sh: one build
 cmake --build build -j "$(nproc)"
 
 build/bin/rbcflow info
-build/bin/rbcflow run data/cases/default.toml
+build/bin/rbcflow run data/cases/default.toml --overwrite   # a rerun replaces out/default
 echo "quickstart: open out/default/rbcflow.xdmf (or rbcflow.pvd) in ParaView;" \
      "the last frame is rendered in out/default/renders/, the diagnostics plotted in out/default/diagnostics.png"

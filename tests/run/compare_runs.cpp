@@ -1,8 +1,9 @@
 // compare_runs CASE.toml DIR_A DIR_B STEP TOLERANCE: exit 0 when the two output directories
 // hold the same checkpoint at STEP (every matrix within TOLERANCE, absolute) and the same
 // diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the larger
-// magnitude); prints the largest differences. For the restart test: an uninterrupted run
-// against one stopped and restarted from a checkpoint.
+// magnitude); prints the largest differences. A NaN against a number (or an empty field
+// against one) is an infinite difference, never dropped; NaN against NaN is no difference. For
+// the restart test: an uninterrupted run against one stopped and restarted from a checkpoint.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,33 @@
 #include "io/xdmf_writer.h"
 
 using namespace rbcflow;
+
+namespace {
+
+// |x - y| where both are numbers; 0 where both are NaN; infinite where only one is.
+double difference(double x, double y) {
+  if (std::isnan(x) || std::isnan(y)) return std::isnan(x) && std::isnan(y) ? 0.0 : INFINITY;
+  return std::abs(x - y);
+}
+
+double relative_difference(double x, double y) {
+  const double d = difference(x, y);
+  return d == 0.0 || std::isinf(d) ? d : d / std::max({std::abs(x), std::abs(y), 1e-300});
+}
+
+double max_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  if (x.rows() != y.rows() || x.cols() != y.cols()) return INFINITY;
+  double d = 0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) d = std::max(d, difference(x.data()[i], y.data()[i]));
+  return d;
+}
+
+double field_difference(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return a.empty() && b.empty() ? 0.0 : INFINITY;
+  return relative_difference(std::stod(a), std::stod(b));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 6) {
@@ -34,7 +62,7 @@ int main(int argc, char** argv) {
     try {
       const Eigen::MatrixXd& x = ka.matrix(name);
       const Eigen::MatrixXd& y = kb.matrix(name);
-      d = x.rows() == y.rows() && x.cols() == y.cols() ? (x - y).cwiseAbs().maxCoeff() : INFINITY;
+      d = max_difference(x, y);
     } catch (const CheckpointError&) {
       continue;  // not a double matrix: compared below when an integer or real
     }
@@ -53,8 +81,7 @@ int main(int argc, char** argv) {
     for (std::size_t r = 0; r < da.rows.size(); ++r) {
       for (std::size_t k = 0; k < da.columns.size(); ++k) {
         if (k == seconds || da.rows[r][k] == db.rows[r][k]) continue;
-        const double x = std::stod(da.rows[r][k]), y = std::stod(db.rows[r][k]);
-        worst_row = std::max(worst_row, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-300}));
+        worst_row = std::max(worst_row, field_difference(da.rows[r][k], db.rows[r][k]));
       }
     }
     std::printf("diagnostics.csv: %zu rows, max relative difference %.3e\n", da.rows.size(), worst_row);
