@@ -19,7 +19,11 @@ void point_field(StateArchive& a, const std::string& name, PointField& f) {
   Eigen::MatrixXd m = f;
   a.matrix(name, m, false);
   if (!a.reading()) return;
-  if (m.size() && m.cols() != 3) throw std::invalid_argument(name + " is not a field of 3-vectors");
+  if (m.size() == 0) {
+    f.resize(0, 3);  // absent: empty (a 0 x 0 matrix does not fit a field of 3 columns)
+    return;
+  }
+  if (m.cols() != 3) throw std::invalid_argument(name + " is not a field of 3-vectors");
   f = m;
 }
 
