@@ -65,12 +65,13 @@ TEST(Scenario, GmshMeshesTheTubeOfTheMemoryModel) {
 }
 
 TEST(Scenario, HematocritBecomesACountOnTheMeshedLumen) {
-  // H = 0.3 in a D = 6, L = 12 tube: 0.3 x 339.3 / 4.18879 = 24.3 cells; the tube hematocrit of
-  // 24 cells is then within half a cell's share of the lumen of what was asked.
-  const Scenario h = prepare_scenario(parse_case(kTube + "element_size = 0.5\n[cells]\nhematocrit = 0.3\norder = 8\n",
+  // H = 0.15 in a D = 6, L = 12 tube: 0.15 x 339.3 / 4.18879 = 12.2 cells (12.1 in the meshed,
+  // inscribed lumen); the tube hematocrit of 12 cells is then within half a cell's share of the
+  // lumen of what was asked.
+  const Scenario h = prepare_scenario(parse_case(kTube + "element_size = 0.5\n[cells]\nhematocrit = 0.15\norder = 8\n",
                                                  "h.toml"));
-  EXPECT_EQ(h.cells.size(), 24u);
-  EXPECT_NEAR(*h.tube_hematocrit, 0.3, 0.5 * (4 * pi / 3) / *h.lumen_volume);
+  EXPECT_EQ(h.cells.size(), 12u);
+  EXPECT_NEAR(*h.tube_hematocrit, 0.15, 0.5 * (4 * pi / 3) / *h.lumen_volume);
   // Section 11.1: two cells 2 apart in a D = 3.2 tube give a tube hematocrit of about 26%.
   const Scenario pair = prepare_scenario(parse_case(
       "[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 3.2\n[cells]\norder = 8\n"

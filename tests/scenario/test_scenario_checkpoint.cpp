@@ -32,6 +32,21 @@ std::unique_ptr<CellStepper> fresh_stepper() {
 
 fs::path temp_file(const std::string& name) { return fs::temp_directory_path() / ("rbcflow_test_" + name); }
 
+// Writes `w` to a file and reads it into a fresh stepper: the CheckpointError's message, or ""
+// when it is accepted.
+std::string refusal(const CheckpointWriter& w, const fs::path& file) {
+  w.write(file);
+  const auto stepper = fresh_stepper();
+  std::string message;
+  try {
+    read_checkpoint(*stepper, kCase, file);
+  } catch (const CheckpointError& e) {
+    message = e.what();
+  }
+  fs::remove(file);
+  return message;
+}
+
 void expect_same_state(const StepperState& a, const StepperState& b) {
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.steps, b.steps);
@@ -61,6 +76,8 @@ TEST(ScenarioCheckpoint, EveryItemOfTheStateReadsBackExactly) {
   run.step();
   restarted.step();
   expect_same_state(run.state(), restarted.state());
+  // The checkpoint carries its case: the same physics (fingerprint) read back from it alone.
+  EXPECT_EQ(case_fingerprint(case_of_checkpoint(file)), case_fingerprint(kCase));
   fs::remove(file);
 }
 
@@ -93,17 +110,8 @@ TEST(ScenarioCheckpoint, TheEarlierLayoutWithoutAVersionStillRestarts) {
 TEST(ScenarioCheckpoint, ANewerStateVersionIsRefusedNamingIt) {
   CheckpointWriter w(case_fingerprint(kCase));
   w.put("state_version", 99LL);
-  const fs::path file = temp_file("checkpoint_state99.h5");
-  w.write(file);
-  const auto stepper = fresh_stepper();
-  try {
-    read_checkpoint(*stepper, kCase, file);
-    ADD_FAILURE() << "read";
-  } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find("checkpoint state version 99; this rbcflow reads state versions 1 to 2"), std::string::npos)
-        << e.what();
-  }
-  fs::remove(file);
+  const std::string e = refusal(w, temp_file("checkpoint_state99.h5"));
+  EXPECT_NE(e.find("checkpoint state version 99; this rbcflow reads state versions 1 to 2"), std::string::npos) << e;
 }
 
 TEST(ScenarioCheckpoint, ACheckpointOfAnotherCellCountIsRefusedNamingTheFile) {
@@ -113,15 +121,6 @@ TEST(ScenarioCheckpoint, ACheckpointOfAnotherCellCountIsRefusedNamingTheFile) {
   w.put("steps", 0LL);
   w.put("cells/count", 0LL);
   const fs::path file = temp_file("checkpoint_nocells.h5");
-  w.write(file);
-  const auto stepper = fresh_stepper();
-  try {
-    read_checkpoint(*stepper, kCase, file);
-    ADD_FAILURE() << "read";
-  } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find(file.string() + ": restore: the state has 0 cells, the run 1"),
-              std::string::npos)
-        << e.what();
-  }
-  fs::remove(file);
+  const std::string e = refusal(w, file);
+  EXPECT_NE(e.find(file.string() + ": restore: the state has 0 cells, the run 1"), std::string::npos) << e;
 }
