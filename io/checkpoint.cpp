@@ -74,6 +74,12 @@ void CheckpointWriter::write(const fs::path& file) const {
 }
 
 Checkpoint Checkpoint::read(const fs::path& file, const std::string& case_fingerprint) {
+  return read_checked(file, &case_fingerprint);
+}
+
+Checkpoint Checkpoint::read_any_case(const fs::path& file) { return read_checked(file, nullptr); }
+
+Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* case_fingerprint) {
   const std::string where = "checkpoint " + file.string();
   if (!fs::is_regular_file(file)) throw CheckpointError(where + ": no such file");
   const h5::QuietErrors quiet;
@@ -93,9 +99,9 @@ Checkpoint Checkpoint::read(const fs::path& file, const std::string& case_finger
                             std::to_string(kFormatVersion));
     }
     const std::string fingerprint = h5::read_string_attribute(f.get(), "case_fingerprint");
-    if (fingerprint != case_fingerprint) {
+    if (case_fingerprint && fingerprint != *case_fingerprint) {
       throw CheckpointError(where + " was written for another case (case fingerprint " + fingerprint +
-                            ", this case " + case_fingerprint +
+                            ", this case " + *case_fingerprint +
                             "); restart with the case.toml of its output directory");
     }
     for (const std::string& name : h5::all_datasets(f.get())) {

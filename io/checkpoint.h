@@ -60,6 +60,8 @@ class Checkpoint {
   // Reads every item of `file`. Throws CheckpointError when the file is missing, is not an
   // HDF5 file or is truncated, is not an rbcflow checkpoint, or carries another fingerprint.
   static Checkpoint read(const std::filesystem::path& file, const std::string& case_fingerprint);
+  // The same without the fingerprint check: to find out which case a checkpoint belongs to.
+  static Checkpoint read_any_case(const std::filesystem::path& file);
 
   bool has(const std::string& name) const { return items_.count(name) > 0; }
   std::vector<std::string> names() const;
@@ -72,6 +74,7 @@ class Checkpoint {
 
  private:
   using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
+  static Checkpoint read_checked(const std::filesystem::path& file, const std::string* case_fingerprint);
   template <typename T>
   const T& get(const std::string& name, const char* what) const;
   std::filesystem::path file_;

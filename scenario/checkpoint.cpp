@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/output_dir.h"
+
 namespace rbcflow {
 namespace {
 
@@ -41,6 +43,7 @@ class CheckpointIn : public StateArchive {
 void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
   CheckpointWriter w(case_fingerprint(c));
   w.put("state_version", static_cast<long long>(kCheckpointStateVersion));
+  w.put("case", case_toml(c));
   CheckpointOut out(w);
   stepper.save(out);
   w.write(file);
@@ -60,6 +63,16 @@ void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem:
   } catch (const std::invalid_argument& e) {
     throw CheckpointError(file.string() + ": " + e.what());
   }
+}
+
+Case case_of_checkpoint(const std::filesystem::path& file) {
+  const Checkpoint k = Checkpoint::read_any_case(file);
+  if (k.has("case")) return parse_case(k.text("case"), file.string() + " (its case)");
+  if (const auto run = run_of_checkpoint(file); run && std::filesystem::is_regular_file(*run / "case.toml")) {
+    return read_case(*run / "case.toml");
+  }
+  throw CheckpointError(file.string() + ": holds no case, and is not in a run's checkpoints/ folder beside its "
+                        "case.toml");
 }
 
 }  // namespace rbcflow

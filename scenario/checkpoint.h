@@ -2,7 +2,8 @@
 // A run's checkpoint: the stepper's own items (CellStepper::save, StepperState::archive) in an
 // HDF5 file (io/checkpoint.h) under the case's fingerprint, with the version of their layout,
 // `state_version`. Version 1 (no such item) and 2 read alike; 2 no longer carries the cells'
-// reference shapes, which nothing read.
+// reference shapes, which nothing read, and adds `case`, the case as run (case.toml's text),
+// so that a checkpoint alone can be continued (case_of_checkpoint).
 #include <filesystem>
 
 #include "io/case.h"
@@ -19,5 +20,9 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
 // Reads a checkpoint of this case into the stepper; throws CheckpointError (exit 2) naming the
 // file when it does not fit the case or has a format this build does not read.
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+// The case a checkpoint was written for: its `case` item, or, for a checkpoint without one,
+// the case.toml of the run that wrote it (RUN/checkpoints/step_N.h5). Throws CheckpointError
+// naming the file when neither is there.
+Case case_of_checkpoint(const std::filesystem::path& file);
 
 }  // namespace rbcflow
