@@ -8,10 +8,10 @@
 #include "cli.h"
 #include "display.h"
 #include "io/case.h"
-#include "scenario/derived.h"
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/vtk_series.h"
+#include "scenario/run_output.h"
 
 namespace rbcflow::cli {
 namespace {
@@ -91,15 +91,7 @@ int run_render(Args& args) {
 
   // Defaults from the case as run, when the directory has it.
   RenderOptions o;
-  if (fs::exists(dir / "case.toml")) {
-    const Case c = read_case(dir / "case.toml");
-    o.field = c.output.render_field;
-    o.view = c.output.render_view;
-    o.width = c.output.render_size[0];
-    o.height = c.output.render_size[1];
-    o.axis = flow_axis(c);
-    o.period = flow_period(c);
-  }
+  if (fs::exists(dir / "case.toml")) o = render_options(read_case(dir / "case.toml"));
   if (!field.empty()) o.field = field;
   if (!view_text.empty()) o.view = parse_view(view_text);
   if (!size_text.empty()) {

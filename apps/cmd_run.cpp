@@ -2,7 +2,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include "cli.h"
 #include "display.h"
@@ -28,19 +27,6 @@ long parse_steps(const std::string& text) {
     throw UsageError("rbcflow run: --steps must be a positive integer, got '" + text + "'");
   }
   return v;
-}
-
-// A directory that holds another run's files is not written into by accident: only with
-// --overwrite (which clears them first) or to continue that very run from its checkpoint.
-void check_earlier_run(const fs::path& dir, const std::string& restart, bool overwrite) {
-  if (overwrite) return;
-  const std::vector<std::string> found = run_files(dir);
-  if (found.empty() || (!restart.empty() && restarts_in_place(restart, dir))) return;
-  std::string list;
-  for (const std::string& f : found) list.append(list.empty() ? "" : ", ").append(f);
-  throw UsageError("rbcflow run: the output directory " + dir.string() + " holds an earlier run (" + list +
-                   "); pass --overwrite to replace it, --restart " + (dir / "checkpoints").string() +
-                   "/step_N.h5 to continue it, or --out another directory");
 }
 
 void print_help() {
@@ -81,7 +67,7 @@ int run_run(Args& args) {
   }
   request.restart = restart;
   request.threads_handed_over = threads_handed_over;  // from rbcflow study --jobs
-  check_earlier_run(request.c.output.dir, restart, request.overwrite);
+  check_run_directory(request, "--overwrite", "--restart");
   if (request.c.output.render) ensure_display();  // before any work: without a display the command restarts under Xvfb
   run_case(request);
   return 0;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/output_dir.h"
 #include "io/plot.h"
@@ -68,17 +69,10 @@ class Progress {
 class RunOutput {
  public:
   RunOutput(const Case& c, std::optional<long> resume)
-      : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume) {
+      : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
     if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
     if (c.output.xdmf) xdmf_.emplace(dir_, resume);
     if (c.output.vtk) vtk_.emplace(dir_, resume);
-    render_.field = c.output.render_field;
-    render_.view = c.output.render_view;
-    render_.width = c.output.render_size[0];
-    render_.height = c.output.render_size[1];
-    render_.axis = flow_axis(c);
-    render_.period = flow_period(c);
-    if (!c.cells) render_.field = "none";
   }
 
   void frame(const CellStepper& stepper, const FlowSolution& s) {
@@ -112,98 +106,167 @@ class RunOutput {
 
 }  // namespace
 
-void run_case(const RunRequest& request) {
-  const Case& c = request.c;
-  const bool quiet = request.quiet, render = c.output.render;
-  const fs::path& case_file = c.source.file;
-  Scenario scenario = prepare_scenario(c);
-  const std::unique_ptr<CellStepper> stepper_owner = make_stepper(scenario);
-  CellStepper& stepper = *stepper_owner;
+struct Run::State {
+  RunRequest request;
+  Scenario scenario;
+  std::unique_ptr<CellStepper> stepper;
   std::optional<long> resume;
-  if (!request.restart.empty()) {
-    read_checkpoint(stepper, c, request.restart);
-    resume = stepper.steps();
+  long first = 0, last = 0;
+  std::optional<RunOutput> output;
+  std::optional<Progress> progress;
+  std::optional<fs::path> last_checkpoint;
+
+  // Runs `f`; an exception leaves with the last good checkpoint named.
+  template <typename F>
+  void guarded(F f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      std::string message = e.what();
+      message.append(last_checkpoint ? "; the last good checkpoint is " + last_checkpoint->string()
+                                     : "; no checkpoint was written");
+      throw std::runtime_error(message);
+    }
   }
-  const long first = stepper.steps();
-  const long last = request.steps > 0 ? first + request.steps : scenario.steps;
+};
+
+Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
+  State& r = *state_;
+  r.request = std::move(request);
+  const Case& c = r.request.c;
+  const bool quiet = r.request.quiet;
+  r.scenario = prepare_scenario(c);
+  r.stepper = make_stepper(r.scenario);
+  CellStepper& stepper = *r.stepper;
+  if (!r.request.restart.empty()) {
+    read_checkpoint(stepper, c, r.request.restart);
+    r.resume = stepper.steps();
+    r.last_checkpoint = r.request.restart;
+  }
+  r.first = stepper.steps();
+  r.last = r.request.steps > 0 ? r.first + r.request.steps : r.scenario.steps;
   if (!quiet) {
-    std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", case_file.c_str(), stepper.cells().size(),
-                stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", first, last,
-                c.output.dir.c_str());
-    if (scenario.placement_note) std::printf("%s\n", scenario.placement_note->c_str());
+    std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", c.source.file.c_str(),
+                stepper.cells().size(), stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", r.first,
+                r.last, c.output.dir.c_str());
+    if (r.scenario.placement_note) std::printf("%s\n", r.scenario.placement_note->c_str());
     if (c.domain.tube_velocity) {
       const Eigen::Vector3d& u = stepper.mean_velocity();
-      std::printf("tube velocity %g: <u> = [%.6g, %.6g, %.6g] (cell-free wall solve)\n", *c.domain.tube_velocity, u.x(),
-                  u.y(), u.z());
+      std::printf("tube velocity %g: <u> = [%.6g, %.6g, %.6g] (cell-free wall solve)\n", *c.domain.tube_velocity,
+                  u.x(), u.y(), u.z());
     }
     std::fflush(stdout);
   }
 
   // Only now that the case has been prepared: a case that fails leaves the earlier run as it was.
-  if (request.overwrite && !(resume && restarts_in_place(request.restart, c.output.dir))) clear_run(c.output.dir);
+  if (r.request.overwrite && !(r.resume && restarts_in_place(r.request.restart, c.output.dir))) {
+    clear_run(c.output.dir);
+  }
   prepare_output_dir(c.output.dir);
-  if (resume) {
-    if (const auto run = carry_tables_from_checkpoint_run(request.restart, c.output.dir); run && !quiet) {
-      std::printf("restart: diagnostics and cell rows up to step %ld carried over from %s\n", *resume, run->c_str());
+  if (r.resume) {
+    if (const auto run = carry_tables_from_checkpoint_run(r.request.restart, c.output.dir); run && !quiet) {
+      std::printf("restart: diagnostics and cell rows up to step %ld carried over from %s\n", *r.resume, run->c_str());
     }
   }
   write_case_toml(c, c.output.dir / "case.toml");
-  RunOutput output(c, resume);
-  Progress progress(quiet, first, last);
-  std::optional<fs::path> last_checkpoint;
-  if (!request.restart.empty()) last_checkpoint = request.restart;
-  const int every = c.output.every, render_every = c.output.render_every, checkpoint_every = c.output.checkpoint_every;
+  r.output.emplace(c, r.resume);
+  r.progress.emplace(quiet, r.first, r.last);
+}
 
-  try {
-    while (stepper.steps() < last) {
-      const long n = stepper.steps();
-      const int threads = request.threads_handed_over ? request.threads_handed_over() : 0;
-      if (threads > 0 && threads != omp_get_max_threads()) {
-        omp_set_num_threads(threads);
-        if (!quiet) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
-      }
-      const auto t0 = Clock::now();
-      const FlowSolution s = stepper.solve();
-      const bool resumed_here = resume && n == *resume;  // the run before the restart wrote step n
-      if (n % every == 0 && !resumed_here) output.frame(stepper, s);
-      if (render && render_every > 0 && n % render_every == 0 && !resumed_here) output.render(stepper, s);
-      const StepReport r = stepper.advance(s);
-      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      output.diagnostics().write(diagnostics_row(stepper, r, scenario, seconds));
-      if (r.max_volume_error > kMaxVolumeError) {
-        char what[160];
-        std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * r.max_volume_error,
-                      stepper.steps());
-        throw std::runtime_error(std::string(what).append(" (more than 1%: the run is unstable; try a smaller dt or "
-                                                          "more de-aliasing)"));
-      }
-      if (checkpoint_every > 0 && stepper.steps() % checkpoint_every == 0) {
-        last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());
-        write_checkpoint(stepper, c, *last_checkpoint);
-      }
-      progress.update(stepper.steps(), stepper.time(), seconds);
+Run::~Run() = default;
+
+long Run::first_step() const { return state_->first; }
+long Run::last_step() const { return state_->last; }
+const CellStepper& Run::stepper() const { return *state_->stepper; }
+const Scenario& Run::scenario() const { return state_->scenario; }
+const Case& Run::c() const { return state_->request.c; }
+
+void Run::step() {
+  State& r = *state_;
+  r.guarded([&] {
+    const Case& c = r.request.c;
+    CellStepper& stepper = *r.stepper;
+    const long n = stepper.steps();
+    const int threads = r.request.threads_handed_over ? r.request.threads_handed_over() : 0;
+    if (threads > 0 && threads != omp_get_max_threads()) {
+      omp_set_num_threads(threads);
+      if (!r.request.quiet) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
     }
-    // The final state: its frame and render (the loop wrote the states before it; a restart
+    const auto t0 = Clock::now();
+    const FlowSolution s = stepper.solve();
+    const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
+    if (n % c.output.every == 0 && !resumed_here) r.output->frame(stepper, s);
+    if (c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here) {
+      r.output->render(stepper, s);
+    }
+    const StepReport report = stepper.advance(s);
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    r.output->diagnostics().write(diagnostics_row(stepper, report, r.scenario, seconds));
+    if (report.max_volume_error > kMaxVolumeError) {
+      char what[160];
+      std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * report.max_volume_error,
+                    stepper.steps());
+      throw std::runtime_error(std::string(what).append(" (more than 1%: the run is unstable; try a smaller dt or "
+                                                        "more de-aliasing)"));
+    }
+    if (c.output.checkpoint_every > 0 && stepper.steps() % c.output.checkpoint_every == 0) {
+      r.last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());
+      write_checkpoint(stepper, c, *r.last_checkpoint);
+    }
+    r.progress->update(stepper.steps(), stepper.time(), seconds);
+  });
+}
+
+void Run::finish() {
+  State& r = *state_;
+  r.guarded([&] {
+    // The final state: its frame and render (the steps wrote the states before it; a restart
     // that took no step is at the state the earlier run wrote), and its checkpoint when not
     // already written.
+    const Case& c = r.request.c;
+    CellStepper& stepper = *r.stepper;
     const long n = stepper.steps();
-    if (!(resume && n == *resume)) {
+    if (!(r.resume && n == *r.resume)) {
       const FlowSolution s = stepper.solve();
-      output.frame(stepper, s);
-      if (render) output.render(stepper, s);
+      r.output->frame(stepper, s);
+      if (c.output.render) r.output->render(stepper, s);
     }
-    if (checkpoint_every > 0 && n % checkpoint_every != 0) {
-      last_checkpoint = checkpoint_path(c.output.dir, n);
-      write_checkpoint(stepper, c, *last_checkpoint);
+    const int every = c.output.checkpoint_every;
+    if (every > 0 && n % every != 0) {
+      r.last_checkpoint = checkpoint_path(c.output.dir, n);
+      write_checkpoint(stepper, c, *r.last_checkpoint);
     }
-    if (render) plot_diagnostics(c.output.dir / "diagnostics.csv", c.output.dir / "diagnostics.png");
-  } catch (const std::exception& e) {
-    std::string message = e.what();
-    message.append(last_checkpoint ? "; the last good checkpoint is " + last_checkpoint->string()
-                                   : "; no checkpoint was written");
-    throw std::runtime_error(message);
+    if (c.output.render) plot_diagnostics(c.output.dir / "diagnostics.csv", c.output.dir / "diagnostics.png");
+  });
+}
+
+void Run::checkpoint(const fs::path& file) {
+  write_checkpoint(*state_->stepper, state_->request.c, file);
+  state_->last_checkpoint = file;
+}
+
+void check_run_directory(const RunRequest& request, const std::string& overwrite_option,
+                         const std::string& restart_option) {
+  const fs::path& dir = request.c.output.dir;
+  if (request.overwrite) return;
+  const std::vector<std::string> found = run_files(dir);
+  if (found.empty() || (!request.restart.empty() && restarts_in_place(request.restart, dir))) return;
+  std::string list;
+  for (const std::string& f : found) list.append(list.empty() ? "" : ", ").append(f);
+  throw case_error(request.c, "output.dir",
+                   "the output directory " + dir.string() + " holds an earlier run (" + list + "); pass " +
+                       overwrite_option + " to replace it, " + restart_option + " " + (dir / "checkpoints").string() +
+                       "/step_N.h5 to continue it, or write elsewhere");
+}
+
+void run_case(const RunRequest& request) {
+  Run run(request);
+  while (!run.done()) run.step();
+  run.finish();
+  if (!request.quiet) {
+    std::printf("done: %ld steps, t = %.5g, output in %s\n", run.last_step() - run.first_step(), run.stepper().time(),
+                request.c.output.dir.c_str());
   }
-  if (!quiet) std::printf("done: %ld steps, t = %.5g, output in %s\n", last - first, stepper.time(), c.output.dir.c_str());
 }
 
 }  // namespace rbcflow

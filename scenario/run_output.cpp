@@ -7,6 +7,7 @@
 #include "geometry/vessel/vessel_mesh.h"
 #include "io/xdmf_writer.h"
 #include "libsolver/wall/tube_flow.h"
+#include "scenario/derived.h"
 
 namespace rbcflow {
 
@@ -84,6 +85,17 @@ std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s
                     {u.x(), u.y(), u.z()}, enclosed_volume(g), surface_area(g), e.taylor_deformation(), inclination});
   }
   return rows;
+}
+
+RenderOptions render_options(const Case& c) {
+  RenderOptions o;
+  o.field = c.cells ? c.output.render_field : "none";
+  o.view = c.output.render_view;
+  o.width = c.output.render_size[0];
+  o.height = c.output.render_size[1];
+  o.axis = flow_axis(c);
+  o.period = flow_period(c);
+  return o;
 }
 
 DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, const Scenario& s, double seconds) {

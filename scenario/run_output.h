@@ -9,6 +9,7 @@
 
 #include "io/case.h"
 #include "io/csv.h"
+#include "io/render.h"
 #include "io/surface.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "scenario/scenario.h"
@@ -22,6 +23,10 @@ std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSoluti
 // One row per cell; `flow_axis` for the inclination (signed in the x-z plane of a shear flow
 // along x, otherwise the angle to the axis in [0, pi/2]).
 std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear);
+
+// The renders a case asks for ([output] render_*; the flow axis and period for the view and the
+// wrapping of cells); no field for a case without cells.
+RenderOptions render_options(const Case& c);
 
 // The row of diagnostics.csv after a step: the report of advance(), (45)-(46) in a straight
 // tube, the tube hematocrit with a vessel, `seconds` the step's wall-clock time.

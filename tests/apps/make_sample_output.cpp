@@ -9,12 +9,12 @@
 #include <numbers>
 
 #include "io/case.h"
-#include "scenario/derived.h"
-#include "scenario/cell_layout.h"
 #include "io/csv.h"
 #include "io/output_dir.h"
 #include "io/vtk_series.h"
 #include "io/xdmf_writer.h"
+#include "scenario/cell_layout.h"
+#include "scenario/derived.h"
 
 using namespace rbcflow;
 
