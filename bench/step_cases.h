@@ -1,8 +1,11 @@
 #pragma once
-// The cases of issue 9's step benchmark, built directly (no case file, no output):
-//   single:   one red cell in free-space shear flow (rate 1), N = 16, M = 48, lambda = 5;
-//   minicase: 2 red cells, N = 12, M = 36, lambda = 1, in a D = 10 tube of ~2,400 triangles,
-//             box 10.5 x 10.5 x 8, <u> = e_z, Ewald tolerance 1e-6, wall solve to 1e-6;
+// The cases of the step benchmark, read from case files and prepared as rbcflow run prepares
+// them (scenario/scenario.h; no output is written):
+//   single:   bench/cases/single.toml: one red cell in free-space shear flow (rate 1), N = 16,
+//             M = 48, lambda = 5;
+//   minicase: bench/cases/minicase.toml: 2 red cells, N = 12, M = 36, lambda = 1, in a D = 10
+//             tube of ~2,400 triangles, box 10.5 x 10.5 x 8, <u> = e_z, Ewald tolerance 1e-6,
+//             wall solve to 1e-6;
 //   tube27:   data/cases/tube_27_cells.toml, read and prepared as rbcflow run does: 27 red
 //             cells (tube hematocrit 0.30, seed 1), N = 16, M = 48, lambda = 5, D = 6 tube
 //             (h = 0.25), box 6.6 x 6.6 x 13.33, <u> = 5 e_z, Ewald and GMRES tolerances 1e-6,
