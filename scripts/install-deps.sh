@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libbenchmark-dev libtoml11-dev
   xvfb xauth
   clang libclang-rt-14-dev
+  pybind11-dev python3-dev python3-numpy python3-matplotlib
 
 )
 
