@@ -30,7 +30,8 @@ double effective_spacing(const CaseCells& cells) {
 double time_step_limit(const CaseCells& cells) {
   const double h = effective_spacing(cells);
   const CaseMembrane& m = cells.membrane;
-  const double in_plane = m.law == MembraneLawKind::neo_hookean ? m.shear_modulus : m.dilatation_modulus;
+  // The neo-Hookean membrane resists area change with K_S = 3 E_S: its stiffest in-plane mode.
+  const double in_plane = m.law == MembraneLawKind::neo_hookean ? 3.0 * m.shear_modulus : m.dilatation_modulus;
   double limit = 2.5 * std::pow(h, 1.2) / in_plane;  // (37)
   if (m.bending_modulus > 0) limit = std::min(limit, 0.19 * std::pow(h, 3.2) / m.bending_modulus);
   return limit;

@@ -37,6 +37,20 @@ TEST(CaseDerived, TimeStepLimitIsEquation37) {
   EXPECT_EQ(time_step_limit(rbc), dilatation);
 }
 
+TEST(CaseDerived, NeoHookeanLimitTakesTheAreaModulus) {
+  // The neo-Hookean law has no E_D: (37) takes its area-dilatation modulus K_S = 3 E_S (with
+  // E_S = 10: 2.5 h^1.2 / 30), the step at which data/cases/capsule_shear.toml stays stable
+  // (run.capsule_shear_example_stays_stable).
+  CaseCells capsule;
+  capsule.shape = CellShape::sphere;
+  capsule.membrane.law = MembraneLawKind::neo_hookean;
+  capsule.membrane.shear_modulus = 10;
+  capsule.membrane.bending_modulus = 0;
+  const double h = effective_spacing(capsule);
+  EXPECT_NEAR(h, std::sqrt(4 * std::numbers::pi) / 16, 1e-10);
+  EXPECT_DOUBLE_EQ(time_step_limit(capsule), 2.5 * std::pow(h, 1.2) / 30);
+}
+
 TEST(CaseDerived, TimeStepIsAutoOrGiven) {
   const Case c = tube_case(3, 10, "[cells]\n[time]\ndt_safety = 0.25\n");
   EXPECT_DOUBLE_EQ(time_step(c), 0.25 * time_step_limit(*c.cells));
