@@ -5,7 +5,8 @@
 // One line per step (step 1 of a lambda != 1 case with walls includes the start sweeps), then
 // the minimum over the later steps of each column (wall-clock seconds; cpu: process CPU time,
 // all threads). Set-up (mesh, wall operator and its LU,
-// placement) is timed apart; the peak resident memory of the process closes the output.
+// placement) is timed apart; what the last step's operators held (by structure, per cell) and
+// the peak resident memory of the process close the output.
 #include <omp.h>
 #include <sys/resource.h>
 
@@ -44,6 +45,12 @@ constexpr Column kColumns[] = {
     {"wall_vel", &StepTimings::wall_at_cells},
 };
 
+double peak_resident_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
+
 void print_row(const char* label, double step, double cpu, const StepTimings& t, int gmres_cells, int gmres_wall) {
   std::printf("%-6s %8.3f %8.3f", label, step, cpu);
   for (const Column& c : kColumns) std::printf(" %10.3f", t.*c.field);
@@ -67,12 +74,13 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     auto stepper = bench::make_step_case(name);
     const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("case %s: %zu cells, %d threads, set-up %.2f s\n", name.c_str(), stepper->cells().size(),
-                omp_get_max_threads(), setup);
+    std::printf("case %s: %zu cells, %d threads, set-up %.2f s, peak memory after set-up %.0f MB\n", name.c_str(),
+                stepper->cells().size(), omp_get_max_threads(), setup, peak_resident_mb());
     std::printf("%-6s %8s %8s", "step", "total", "cpu");
     for (const Column& c : kColumns) std::printf(" %10s", c.name);
     std::printf(" %6s %6s\n", "it_c", "it_w");
     double best_step = 1e300, best_cpu = 1e300;
+    MemoryReport memory;  // of the last step's operators
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
     for (int k = 1; k <= steps; ++k) {
@@ -83,6 +91,8 @@ int main(int argc, char** argv) {
       const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
       const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
       print_row(std::to_string(k).c_str(), step, cpu, s.timings, s.gmres_cells, s.gmres_wall);
+      if (k <= 2) std::printf("       peak memory after step %d: %.0f MB\n", k, peak_resident_mb());
+      memory = s.memory;
       std::fflush(stdout);
       if (k == 1 && steps > 1) continue;
       best_step = std::min(best_step, step);
@@ -90,10 +100,13 @@ int main(int argc, char** argv) {
       for (const Column& c : kColumns) best.*c.field = std::min(best.*c.field, s.timings.*c.field);
     }
     print_row("min", best_step, best_cpu, best, 0, 0);
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    const double peak_mb = usage.ru_maxrss / 1024.0;  // Linux: kilobytes
-    std::printf("peak memory %.0f MB (%.1f MB per cell)\n", peak_mb, peak_mb / stepper->cells().size());
+    const double peak_mb = peak_resident_mb();
+    const double cells = static_cast<double>(std::max<std::size_t>(1, stepper->cells().size()));
+    std::printf("held by the last step's operators (MB per cell):\n");
+    for (const MemoryReport::Item& i : memory.items())
+      if (i.bytes > 0) std::printf("  %-52s %8.3f\n", i.name.c_str(), i.bytes / 1048576.0 / cells);
+    std::printf("  %-52s %8.3f\n", "total", memory.total() / 1048576.0 / cells);
+    std::printf("peak memory %.0f MB (%.1f MB per cell)\n", peak_mb, peak_mb / cells);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());
     return 1;

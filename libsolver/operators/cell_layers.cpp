@@ -90,6 +90,11 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     ScopedTimer plans_timer(timings_.geometry);
     single_plan_ = std::make_unique<EwaldPlan>(single_grid, nodes_.x, folded_shares(Layer::single));
     if (with_double_layer) double_plan_ = std::make_unique<EwaldPlan>(double_grid, nodes_.x, folded_shares(Layer::double_));
+    // The plans hold the folded nodes now, as their pair shares.
+    for (int c = 0; c < nc; ++c) {
+      for (LayerCorrection* k : {self_single_[c].get(), self_double_[c].get(), near_[c].single.get(), near_[c].double_.get()})
+        if (k) k->release_folded();
+    }
   }
 }
 
@@ -183,6 +188,22 @@ Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
     regular = regular_layer_sum(nodes_, u, LayerKernel{Layer::double_, 0.0}, nodes_.x, self);
   }
   return regular + apply_corrections(Layer::double_, u);
+}
+
+void CellLayers::report_memory(MemoryReport& report) const {
+  std::size_t geometry = matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight);
+  for (const auto& c : cells_) geometry += c->memory_bytes();
+  report.add("cell geometry", geometry);
+  for (int c = 0; c < num_cells(); ++c) {
+    self_single_[c]->report_memory(report, "self corrections");
+    if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", false);
+    const NearCorrection& n = near_[c];
+    report.add("near corrections: targets", heap_bytes(n.rows));
+    if (n.single) n.single->report_memory(report, "near corrections");
+    if (n.double_) n.double_->report_memory(report, "near corrections", false);
+  }
+  if (single_plan_) single_plan_->report_memory(report, "cell Ewald single");
+  if (double_plan_) double_plan_->report_memory(report, "cell Ewald double");
 }
 
 }  // namespace rbcflow

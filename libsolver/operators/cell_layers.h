@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "geometry/surface/cell_grids.h"
+#include "libsolver/common/memory_report.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/common/periodic_box.h"
@@ -65,6 +66,9 @@ class CellLayers {
   bool has_double_layer() const { return self_double_[0] != nullptr; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs
   const CellLayersTimings& build_timings() const { return timings_; }
+  // What the step's cell operator holds (common/memory_report.h): "cell geometry", "self
+  // corrections: ...", "near corrections: ...", "cell Ewald single/double: ...".
+  void report_memory(MemoryReport& report) const;
 
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);

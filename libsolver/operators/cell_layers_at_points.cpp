@@ -91,4 +91,15 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
   return regular + corrections(Layer::double_, u);
 }
 
+void CellLayersAtPoints::report_memory(MemoryReport& report, const std::string& prefix) const {
+  report.add(prefix + " near corrections: targets", matrix_bytes(points_));
+  for (const Near& n : near_) {
+    report.add(prefix + " near corrections: targets", heap_bytes(n.rows));
+    if (n.single) n.single->report_memory(report, prefix + " near corrections");
+    if (n.double_) n.double_->report_memory(report, prefix + " near corrections", false);
+  }
+  if (single_plan_) single_plan_->report_memory(report, prefix + " Ewald single");
+  if (double_plan_) double_plan_->report_memory(report, prefix + " Ewald double");
+}
+
 }  // namespace rbcflow

@@ -6,6 +6,7 @@
 // step from the step's CellLayers; the products are linear in the densities.
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "cell_layers.h"
@@ -19,6 +20,8 @@ class CellLayersAtPoints {
 
   int num_points() const { return static_cast<int>(points_.rows()); }
   int near_points() const;  // (point, cell) pairs that needed the nearly-singular correction
+  // "<prefix> near corrections: ...", "<prefix> Ewald single/double: ..." (memory_report.h).
+  void report_memory(MemoryReport& report, const std::string& prefix) const;
 
   // Densities stacked over the cells as in CellLayers; the results have one row per point.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;

@@ -1,6 +1,7 @@
 #include "singular_quadrature.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -354,6 +355,24 @@ Eigen::MatrixXd free_space_layer_on_nodes(const std::shared_ptr<const CellQuadra
   const LayerCorrection correction(cell, kernel, targets);
   return regular_layer_sum(cell->nodes(), density, kernel, x0, self) +
          (patch_density.order() > 0 ? correction.apply(density, patch_density) : correction.apply(density));
+}
+
+std::size_t CellQuadratureGeometry::memory_bytes() const {
+  return matrix_bytes(x_.values()) + matrix_bytes(jn_.values()) + matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) +
+         matrix_bytes(nodes_.weight) + matrix_bytes(x_data_) + matrix_bytes(jn_data_);
+}
+
+void LayerCorrection::report_memory(MemoryReport& report, const std::string& prefix, bool with_stencils) const {
+  if (with_stencils) {
+    const std::size_t tables = stencils_->table.empty() ? 0 : static_cast<std::size_t>(
+        *std::max_element(stencils_->table.begin(), stencils_->table.end()) + 1);
+    report.add(prefix + ": patch stencils", tables * stencils_->points_per_table * sizeof(HermiteStencil) +
+                                                heap_bytes(stencils_->table) + heap_bytes(stencils_->phi_shift));
+  }
+  report.add(prefix + ": patch kernels", heap_bytes(patch_k_) + heap_bytes(patch_offsets_));
+  report.add(prefix + ": node entries", heap_bytes(nodes_) + heap_bytes(node_offsets_));
+  report.add(prefix + ": folded nodes", heap_bytes(folded_) + heap_bytes(folded_offsets_));
+  report.add(prefix + ": targets", heap_bytes(targets_));
 }
 
 }  // namespace rbcflow

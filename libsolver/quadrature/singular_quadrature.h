@@ -18,11 +18,13 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "geometry/surface/cell_grids.h"
 #include "geometry/surface/sh_surface.h"
+#include "libsolver/common/memory_report.h"
 #include "libsolver/quadrature/hermite_interpolation.h"
 #include "libsolver/quadrature/layer_kernel.h"
 #include "libsolver/quadrature/regular_quadrature.h"
@@ -72,6 +74,7 @@ class CellQuadratureGeometry {
   // HermiteInterpolator::interpolate).
   void geometry_at(const HermiteStencil& s, Eigen::Vector3d& x, Eigen::Vector3d& jn, int phi_shift = 0) const;
   const HermiteInterpolator& interpolator() const { return *interp_; }
+  std::size_t memory_bytes() const;  // its arrays (the shared grids and interpolator not counted)
 
  private:
   SHCoeffs x_, jn_;
@@ -106,9 +109,16 @@ class LayerCorrection {
 
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
-  // The patch nodes of target t whose share the caller removes (see fold_radius).
+  // The patch nodes of target t whose share the caller removes (see fold_radius); empty for
+  // every target after release_folded().
   std::span<const PatchNode> folded(int t) const {
+    if (folded_offsets_.empty()) return {};
     return {folded_.data() + folded_offsets_[t], static_cast<std::size_t>(folded_offsets_[t + 1] - folded_offsets_[t])};
+  }
+  // Frees the folded nodes once the caller has taken them (its real-space sum's pair shares).
+  void release_folded() {
+    std::vector<PatchNode>().swap(folded_);
+    std::vector<std::int64_t>().swap(folded_offsets_);
   }
   // Correction at every target for the density given at the cell's nodes (nodes x 3); the
   // patch sees its expansion of order N (exact for the band-limited densities of the solver).
@@ -118,6 +128,11 @@ class LayerCorrection {
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const SHCoeffs& patch_density) const;
   // The same with the patch's density as Hermite data (CellQuadratureGeometry::patch_data).
   Eigen::MatrixXd apply(const Eigen::MatrixXd& density, const HermiteData& patch_data) const;
+
+  // Adds "<prefix>: patch stencils" (unless with_stencils is false: the single- and
+  // double-layer corrections of single_and_double share them), "patch kernels", "node entries",
+  // "folded nodes".
+  void report_memory(MemoryReport& report, const std::string& prefix, bool with_stencils = true) const;
 
  private:
   struct Unbuilt {};

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 
 #include "real_space_sum.h"
 
@@ -16,24 +17,29 @@ double seconds_between(std::chrono::steady_clock::time_point a,
 }  // namespace
 
 std::vector<double>* EwaldPlan::kept(std::vector<double>& coefficients) const {
-  return neighbors_.n_pairs() <= kMaxKeptPairs ? &coefficients : nullptr;
+  return neighbors().n_pairs() <= kMaxKeptPairs ? &coefficients : nullptr;
+}
+
+const NeighborList& EwaldPlan::neighbors() const {
+  if (!neighbors_) throw std::logic_error("EwaldPlan: the real-space sum was released (release_real_space)");
+  return *neighbors_;
 }
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources,
                      const PointField& targets, PairShares shares)
-    : neighbors_(grid->box(), grid->parameters().cutoff, sources, targets),
+    : neighbors_(std::in_place, grid->box(), grid->parameters().cutoff, sources, targets),
       smooth_(std::move(grid), sources, targets),
       shares_(std::move(shares)) {}
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points, PairShares shares)
-    : neighbors_(grid->box(), grid->parameters().cutoff, points, points),
+    : neighbors_(std::in_place, grid->box(), grid->parameters().cutoff, points, points),
       smooth_(std::move(grid), points),
       shares_(std::move(shares)) {}
 
 PointField EwaldPlan::single_layer(const PointField& forces) {
   PointField u = smooth_.single_layer(forces);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_single_layer(neighbors_, xi(), forces, kept(single_coefficients_), &shares_);
+  u += real_space_single_layer(neighbors(), xi(), forces, kept(single_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
@@ -54,12 +60,22 @@ PointField EwaldPlan::smooth_single_layer(const SpmeStencils::SpreadingMatrix& s
 }
 
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
+  double_products_ = true;
   PointField u = smooth_.double_layer(q, normals);
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_double_layer(neighbors_, xi(), q, normals, kept(double_coefficients_), &shares_);
+  u += real_space_double_layer(neighbors(), xi(), q, normals, kept(double_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
+}
+
+void EwaldPlan::report_memory(MemoryReport& report, const std::string& prefix) const {
+  if (neighbors_) report.add(prefix + ": neighbour list", neighbors_->memory_bytes());
+  report.add(prefix + ": kept pair coefficients", heap_bytes(single_coefficients_) + heap_bytes(double_coefficients_));
+  report.add(prefix + ": B-spline stencils", smooth_.stencil_bytes());
+  report.add(prefix + ": pair shares", heap_bytes(shares_.offsets) + heap_bytes(shares_.sources) + heap_bytes(shares_.shares));
+  // Work arrays live for one product, and products run one at a time: the largest counts.
+  report.add_max("SPME work arrays (one product at a time)", smooth_.work_bytes(double_products_ ? 6 : 3));
 }
 
 }  // namespace rbcflow

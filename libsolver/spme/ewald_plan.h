@@ -26,8 +26,11 @@
 // Products modify work arrays: one thread at a time per plan; each product is OpenMP-parallel.
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "libsolver/common/memory_report.h"
 #include "neighbor_list.h"
 #include "libsolver/common/periodic_box.h"
 #include "real_space_sum.h"
@@ -66,7 +69,16 @@ class EwaldPlan {
   // The same for forces = map x, through `spreading` = smooth().sources().spreading_matrix(map).
   PointField smooth_single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x);
 
-  const NeighborList& neighbors() const { return neighbors_; }
+  // Throws std::logic_error after release_real_space().
+  const NeighborList& neighbors() const;
+  // Frees the neighbour list, for a caller that has assembled the real-space part itself
+  // (wall/wall_real_space.h) and applies only the smooth part from now on; single_layer and
+  // double_layer then throw std::logic_error.
+  void release_real_space() { neighbors_.reset(); }
+  // Adds "<prefix>: neighbour list", "kept pair coefficients", "B-spline stencils", "pair
+  // shares", and its products' work arrays to the largest of all plans' (the grid itself is
+  // the SpmeGridCache's).
+  void report_memory(MemoryReport& report, const std::string& prefix) const;
   const SpmePlan& smooth() const { return smooth_; }
   double xi() const { return smooth_.grid().parameters().xi; }
   // Stage times of the last product.
@@ -75,10 +87,11 @@ class EwaldPlan {
  private:
   std::vector<double>* kept(std::vector<double>& coefficients) const;
 
-  NeighborList neighbors_;
+  std::optional<NeighborList> neighbors_;  // empty after release_real_space()
   SpmePlan smooth_;
   PairShares shares_;
   std::vector<double> single_coefficients_, double_coefficients_;
+  bool double_products_ = false;  // whether double_layer has run (for report_memory)
   EwaldTimings timings_;
 };
 

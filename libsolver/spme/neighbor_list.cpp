@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libsolver/common/memory_report.h"
+
 namespace rbcflow {
 namespace {
 
@@ -215,6 +217,12 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
       pair_image_[out] = static_cast<std::uint16_t>(c.image[listed[i]]);
     }
   });
+}
+
+std::size_t NeighborList::memory_bytes() const {
+  return heap_bytes(order_) + heap_bytes(sources_) + heap_bytes(target_order_) + heap_bytes(rank_) +
+         heap_bytes(targets_) + heap_bytes(image_shifts_) + heap_bytes(offsets_) + heap_bytes(pair_source_) +
+         heap_bytes(pair_image_);
 }
 
 }  // namespace rbcflow

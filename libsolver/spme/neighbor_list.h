@@ -28,6 +28,7 @@ class NeighborList {
   int n_sources() const { return static_cast<int>(order_.size()); }
   int n_targets() const { return static_cast<int>(targets_.size() / 3); }
   std::int64_t n_pairs() const { return offsets_.back(); }
+  std::size_t memory_bytes() const;
 
   // Sources are stored sorted by cell: sorted index i is the caller's source order()[i].
   const std::vector<int>& order() const { return order_; }

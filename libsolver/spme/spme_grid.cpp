@@ -10,6 +10,7 @@
 #include "bspline.h"
 #include "geometry/sph/fftw_util.h"
 #include "libsolver/kernels/ewald_kernels.h"
+#include "libsolver/common/memory_report.h"
 
 namespace rbcflow {
 namespace {
@@ -165,6 +166,10 @@ void SpmeGrid::apply_stresslet(const fftw_complex* density, fftw_complex* veloci
       }
     }
   }
+}
+
+std::size_t SpmeGrid::memory_bytes() const {
+  return heap_bytes(influence_) + heap_bytes(wavenumber_[0]) + heap_bytes(wavenumber_[1]) + heap_bytes(wavenumber_[2]);
 }
 
 }  // namespace rbcflow

@@ -44,6 +44,7 @@ class SpmeGrid {
   FftPlanning planning() const { return flags_ == FFTW_MEASURE ? FftPlanning::measure : FftPlanning::estimate; }
   std::size_t real_points() const;     // K1 K2 K3
   std::size_t complex_points() const;  // K1 K2 (K3/2 + 1)
+  std::size_t memory_bytes() const;    // influence function and wavenumbers (FFTW's plans not counted)
 
   // Forward transform of `components` (3 or 6) interleaved real grids (arrays from fftw_malloc).
   void forward(int components, double* real, fftw_complex* spectrum) const;

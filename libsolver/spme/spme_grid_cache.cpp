@@ -28,4 +28,11 @@ std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel ker
   return std::make_shared<const SpmeGrid>(box, choice.parameters, FftPlanning::estimate);
 }
 
+std::size_t SpmeGridCache::memory_bytes() const {
+  const std::lock_guard lock(mutex_);
+  std::size_t bytes = 0;
+  for (const Entry& e : entries_) bytes += e.grid->memory_bytes();
+  return bytes;
+}
+
 }  // namespace rbcflow

@@ -23,6 +23,7 @@ class SpmeGridCache {
   // real_space). Thread-safe.
   std::shared_ptr<const SpmeGrid> grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box, long n_sources,
                                        long n_targets = -1, const RealSpaceUse& real_space = {});
+  std::size_t memory_bytes() const;  // of the grids it holds
 
  private:
   struct Entry {
@@ -33,7 +34,7 @@ class SpmeGridCache {
     RealSpaceUse real_space;
     std::shared_ptr<const SpmeGrid> grid;
   };
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::vector<Entry> entries_;
 };
 

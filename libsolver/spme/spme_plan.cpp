@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libsolver/common/memory_report.h"
+
 namespace rbcflow {
 namespace {
 
@@ -27,25 +29,23 @@ SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sourc
                    const PointField& targets)
     : grid_(std::move(grid)),
       sources_(std::make_shared<const SpmeStencils>(*grid_, sources)),
-      targets_(std::make_shared<const SpmeStencils>(*grid_, targets)),
-      velocity_(3 * grid_->complex_points()) {}
+      targets_(std::make_shared<const SpmeStencils>(*grid_, targets)) {}
 
 SpmePlan::SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points)
     : grid_(std::move(grid)),
       sources_(std::make_shared<const SpmeStencils>(*grid_, points)),
-      targets_(sources_),
-      velocity_(3 * grid_->complex_points()) {}
+      targets_(sources_) {}
 
 PointField SpmePlan::single_layer(const PointField& forces) {
   check_rows(forces, n_sources(), "the force field");
   auto t = std::chrono::steady_clock::now();
-  density_.resize(3 * static_cast<std::size_t>(n_sources()));
-  real_.reserve(3 * grid_->real_points());
+  std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
+  FftwBuffer<double> real(3 * grid_->real_points());
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s)
-    for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
-  sources_->spread<3>(density_.data(), real_.data());
-  return convolve_stokeslet(t);
+    for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
+  sources_->spread<3>(density.data(), real.data());
+  return convolve_stokeslet(real, t);
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
@@ -54,12 +54,12 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
                                 std::to_string(spreading.cols()) + " for " + std::to_string(x.rows()) +
                                 " unknowns on a grid of " + std::to_string(grid_->real_points()) + " points");
   auto t = std::chrono::steady_clock::now();
-  density_.resize(3 * static_cast<std::size_t>(x.rows()));
-  real_.reserve(3 * grid_->real_points());
+  std::vector<double> density(3 * static_cast<std::size_t>(x.rows()));
+  FftwBuffer<double> real(3 * grid_->real_points());
   for (Eigen::Index n = 0; n < x.rows(); ++n)
-    for (int c = 0; c < 3; ++c) density_[3 * static_cast<std::size_t>(n) + c] = x(n, c);
-  const double* in = density_.data();
-  double* grid = real_.data();
+    for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(n) + c] = x(n, c);
+  const double* in = density.data();
+  double* grid = real.data();
 #pragma omp parallel for schedule(dynamic, 4096)
   for (Eigen::Index g = 0; g < spreading.rows(); ++g) {
     double a = 0.0, b = 0.0, c = 0.0;
@@ -73,29 +73,29 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
     grid[3 * g + 1] = b;
     grid[3 * g + 2] = c;
   }
-  return convolve_stokeslet(t);
+  return convolve_stokeslet(real, t);
 }
 
-PointField SpmePlan::convolve_stokeslet(std::chrono::steady_clock::time_point t) {
+PointField SpmePlan::convolve_stokeslet(FftwBuffer<double>& real, std::chrono::steady_clock::time_point t) {
   timings_.spreading = seconds_since(t);
-  grid_->forward(3, real_.data(), velocity_.data());
+  FftwBuffer<fftw_complex> velocity(3 * grid_->complex_points());
+  grid_->forward(3, real.data(), velocity.data());
   timings_.fft = seconds_since(t);
-  grid_->apply_stokeslet(velocity_.data());
+  grid_->apply_stokeslet(velocity.data());
   timings_.influence = seconds_since(t);
-  return transform_and_interpolate();
+  return transform_and_interpolate(velocity, real);
 }
 
 PointField SpmePlan::double_layer(const PointField& q, const PointField& normals) {
   check_rows(q, n_sources(), "the double-layer density");
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
-  density_.resize(6 * static_cast<std::size_t>(n_sources()));
-  real_.reserve(6 * grid_->real_points());
-  spectrum_.reserve(6 * grid_->complex_points());
+  std::vector<double> density(6 * static_cast<std::size_t>(n_sources()));
+  FftwBuffer<double> real(6 * grid_->real_points());
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s) {
     // Symmetric part of q n^T (T is symmetric): xx, yy, zz, xy, xz, yz.
-    double* d = &density_[6 * static_cast<std::size_t>(s)];
+    double* d = &density[6 * static_cast<std::size_t>(s)];
     const double q0 = q(s, 0), q1 = q(s, 1), q2 = q(s, 2);
     const double n0 = normals(s, 0), n1 = normals(s, 1), n2 = normals(s, 2);
     d[0] = q0 * n0;
@@ -105,23 +105,38 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
     d[4] = 0.5 * (q0 * n2 + q2 * n0);
     d[5] = 0.5 * (q1 * n2 + q2 * n1);
   }
-  sources_->spread<6>(density_.data(), real_.data());
+  sources_->spread<6>(density.data(), real.data());
+  std::vector<double>().swap(density);
   timings_.spreading = seconds_since(t);
-  grid_->forward(6, real_.data(), spectrum_.data());
-  timings_.fft = seconds_since(t);
-  grid_->apply_stresslet(spectrum_.data(), velocity_.data());
+  FftwBuffer<fftw_complex> velocity(3 * grid_->complex_points());
+  {
+    FftwBuffer<fftw_complex> spectrum(6 * grid_->complex_points());
+    grid_->forward(6, real.data(), spectrum.data());
+    timings_.fft = seconds_since(t);
+    grid_->apply_stresslet(spectrum.data(), velocity.data());
+  }
   timings_.influence = seconds_since(t);
-  return transform_and_interpolate();
+  return transform_and_interpolate(velocity, real);
 }
 
-PointField SpmePlan::transform_and_interpolate() {
+PointField SpmePlan::transform_and_interpolate(FftwBuffer<fftw_complex>& velocity, FftwBuffer<double>& real) {
   auto t = std::chrono::steady_clock::now();
-  grid_->backward(velocity_.data(), real_.data());
+  grid_->backward(velocity.data(), real.data());
   timings_.fft += seconds_since(t);
   PointField u;
-  targets_->interpolate(real_.data(), u);
+  targets_->interpolate(real.data(), u);
   timings_.interpolation = seconds_since(t);
   return u;
+}
+
+std::size_t SpmePlan::stencil_bytes() const {
+  return sources_->memory_bytes() + (targets_ == sources_ ? 0 : targets_->memory_bytes());
+}
+
+std::size_t SpmePlan::work_bytes(int components) const {
+  const std::size_t real = components * grid_->real_points() * sizeof(double);
+  const std::size_t spectra = (components == 6 ? 9 : 3) * grid_->complex_points() * sizeof(fftw_complex);
+  return components * static_cast<std::size_t>(n_sources()) * sizeof(double) + real + spectra;
 }
 
 }  // namespace rbcflow

@@ -1,14 +1,15 @@
 #pragma once
 // The smooth part of the periodic single- and double-layer sums by SPME (section 5.2) for
-// fixed source and target positions: stencils computed once, work arrays kept, so that a
-// product (every GMRES iteration) costs spreading + FFT + influence + FFT + interpolation.
+// fixed source and target positions: stencils computed once, so that a product (every GMRES
+// iteration) costs spreading + FFT + influence + FFT + interpolation. The grid-sized work
+// arrays live for one product (work_bytes()).
 //
 //   single_layer: u(x_t) = (1/V) sum_{k != 0} S^F(k) . sum_s f_s e^{i k.(x_s - x_t)}
 //   double_layer: u_i(x_t) = (1/V) sum_{k != 0} sum_s T^F_ijk(k) q_s,j n_s,k e^{i k.(x_s - x_t)}
 // (docs/references.md section 2; densities carry their quadrature weights). A source that is also
 // a target contributes its smooth self-term, as it must (only the real-space sum skips r = 0).
 //
-// Products modify the work arrays: one thread at a time per plan (each product is itself
+// Products record their stage timings: one thread at a time per plan (each product is itself
 // OpenMP-parallel). Several plans may share one SpmeGrid.
 #include <chrono>
 #include <memory>
@@ -45,22 +46,23 @@ class SpmePlan {
   PointField single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x);
 
   const SpmeStencils& sources() const { return *sources_; }
+  // Stencils (source and target, once when shared), and the work arrays a product of the layer
+  // with `components` (3: single, 6: double) allocates for its duration: plans applied one
+  // after the other share that memory through the allocator rather than each keeping its own.
+  std::size_t stencil_bytes() const;
+  std::size_t work_bytes(int components) const;
 
   const SpmeTimings& timings() const { return timings_; }
 
  private:
-  // The single layer of the forces spread into real_ (spreading begun at t): transforms,
+  // The single layer of the forces spread into `real` (spreading begun at t): transforms,
   // influence function, interpolation.
-  PointField convolve_stokeslet(std::chrono::steady_clock::time_point t);
-  // Backward FFT of velocity_ and interpolation to the targets.
-  PointField transform_and_interpolate();
+  PointField convolve_stokeslet(FftwBuffer<double>& real, std::chrono::steady_clock::time_point t);
+  // Backward FFT of `velocity` (into `real`) and interpolation to the targets.
+  PointField transform_and_interpolate(FftwBuffer<fftw_complex>& velocity, FftwBuffer<double>& real);
 
   std::shared_ptr<const SpmeGrid> grid_;
   std::shared_ptr<const SpmeStencils> sources_, targets_;
-  std::vector<double> density_;        // interleaved point densities
-  FftwBuffer<double> real_;            // 3 (single layer) or 6 interleaved real grids
-  FftwBuffer<fftw_complex> spectrum_;  // 6 interleaved spectra (double layer only)
-  FftwBuffer<fftw_complex> velocity_;  // 3 interleaved spectra
   SpmeTimings timings_;
 };
 

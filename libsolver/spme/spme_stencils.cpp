@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "bspline.h"
+#include "libsolver/common/memory_report.h"
 
 namespace rbcflow {
 
@@ -223,5 +224,9 @@ SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::Sparse
 
 template void SpmeStencils::spread<3>(const double*, double*) const;
 template void SpmeStencils::spread<6>(const double*, double*) const;
+
+std::size_t SpmeStencils::memory_bytes() const {
+  return heap_bytes(order_) + heap_bytes(first_) + heap_bytes(weights_) + heap_bytes(slab_begin_);
+}
 
 }  // namespace rbcflow

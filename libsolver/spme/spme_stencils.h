@@ -24,6 +24,7 @@ class SpmeStencils {
   SpmeStencils(const SpmeGrid& grid, const PointField& points);
 
   int size() const { return static_cast<int>(order_.size()); }
+  std::size_t memory_bytes() const;
 
   // grid[C * g + c] = sum_points W_point(g) density[C * point + c]: `density` holds C
   // interleaved numbers per point in the caller's order; `grid` is overwritten.

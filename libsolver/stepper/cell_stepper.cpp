@@ -207,6 +207,11 @@ FlowSolution CellStepper::solve() const {
     throw std::runtime_error(what + at_step(step));
   }
   total_timer.stop();
+  if (layers) layers->report_memory(s.memory);
+  if (at_wall) at_wall->report_memory(s.memory, "at wall:");
+  if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
+  if (wall_) wall_->report_memory(s.memory);
+  s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
   return s;
 }
 

@@ -67,6 +67,7 @@ struct FlowSolution {
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
   StepTimings timings;        // where solve() spent its time
+  MemoryReport memory;        // what solve()'s operators held at its end (memory_report.h)
 };
 
 struct StepReport {

@@ -41,6 +41,10 @@ class WallCoupling {
   // the operator with `points` as targets, then the velocity for a force.
   WallOperator operator_at(const PointField& points) const;
   static PointField velocity_at(WallOperator& at_points, const PointField& force);
+  void report_memory(MemoryReport& report) const {
+    solver_.report_memory(report);
+    report.add("wall SPME grids", grid_cache_->memory_bytes());
+  }
 
  private:
   const std::array<PointField, 3>& unit_forces();

@@ -5,37 +5,51 @@
 #include <stdexcept>
 #include <string>
 
+#include "libsolver/common/memory_report.h"
+
 namespace rbcflow {
 
 SymmetricBlockMatrix::SymmetricBlockMatrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& m)
-    : num_nodes_(static_cast<int>(m.cols() / 3)) {
+    : SymmetricBlockMatrix(static_cast<int>(m.rows() / 3), static_cast<int>(m.cols() / 3), [&m](int t, Row& row) {
+        std::vector<int> slot;  // the row's few nodes: a linear search is enough
+        for (int k = 0; k < 3; ++k) {
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m, 3 * t + k); it; ++it) {
+            const int node = static_cast<int>(it.col() / 3);
+            auto found = std::find(slot.begin(), slot.end(), node);
+            if (found == slot.end()) {
+              slot.push_back(node);
+              row.emplace_back(node, Eigen::Matrix3d::Zero());
+              found = slot.end() - 1;
+            }
+            row[found - slot.begin()].second(k, it.col() % 3) = it.value();
+          }
+        }
+      }) {
   if (m.rows() % 3 != 0 || m.cols() % 3 != 0)
     throw std::invalid_argument("SymmetricBlockMatrix: the matrix is " + std::to_string(m.rows()) + " x " +
                                 std::to_string(m.cols()) + ", not made of 3x3 blocks");
-  const int nt = static_cast<int>(m.rows() / 3);
-  // The blocks of each target, in ascending node order (rows are sorted by column).
-  std::vector<std::vector<std::pair<int, Eigen::Matrix3d>>> rows(nt);
+}
+
+SymmetricBlockMatrix::SymmetricBlockMatrix(int num_targets, int num_nodes, const std::function<void(int, Row&)>& row)
+    : num_nodes_(num_nodes) {
+  const int nt = num_targets;
+  // Each target's blocks, sorted by node and packed at once (the unpacked rows of all targets
+  // would take 1.5 times the matrix).
+  std::vector<std::vector<std::pair<int, std::array<double, 6>>>> rows(nt);
   bool symmetric = true;
 #pragma omp parallel
   {
-    std::vector<int> slot(num_nodes_, -1);
+    Row blocks;
 #pragma omp for schedule(dynamic, 64) reduction(&& : symmetric)
     for (int t = 0; t < nt; ++t) {
-      std::vector<std::pair<int, Eigen::Matrix3d>>& row = rows[t];
-      for (int k = 0; k < 3; ++k) {
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m, 3 * t + k); it; ++it) {
-          const int node = static_cast<int>(it.col() / 3);
-          if (slot[node] < 0) {
-            slot[node] = static_cast<int>(row.size());
-            row.emplace_back(node, Eigen::Matrix3d::Zero());
-          }
-          row[slot[node]].second(k, it.col() % 3) = it.value();
-        }
-      }
-      std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (const auto& [node, b] : row) {
-        slot[node] = -1;
+      blocks.clear();
+      row(t, blocks);
+      std::sort(blocks.begin(), blocks.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<std::pair<int, std::array<double, 6>>>& packed = rows[t];
+      packed.reserve(blocks.size());
+      for (const auto& [node, b] : blocks) {
         if ((b - b.transpose()).cwiseAbs().maxCoeff() > 1e-12 * b.cwiseAbs().maxCoeff()) symmetric = false;
+        packed.emplace_back(node, std::array<double, 6>{b(0, 0), b(0, 1), b(0, 2), b(1, 1), b(1, 2), b(2, 2)});
       }
     }
   }
@@ -49,9 +63,9 @@ SymmetricBlockMatrix::SymmetricBlockMatrix(const Eigen::SparseMatrix<double, Eig
     std::int64_t i = offsets_[t];
     for (const auto& [node, b] : rows[t]) {
       nodes_[i] = node;
-      blocks_[i++] = {b(0, 0), b(0, 1), b(0, 2), b(1, 1), b(1, 2), b(2, 2)};
+      blocks_[i++] = b;
     }
-    std::vector<std::pair<int, Eigen::Matrix3d>>().swap(rows[t]);
+    std::vector<std::pair<int, std::array<double, 6>>>().swap(rows[t]);
   }
 }
 
@@ -76,6 +90,10 @@ Eigen::VectorXd SymmetricBlockMatrix::operator*(const Eigen::VectorXd& f) const 
     y[3 * t + 2] = y2;
   }
   return y;
+}
+
+std::size_t SymmetricBlockMatrix::memory_bytes() const {
+  return heap_bytes(offsets_) + heap_bytes(nodes_) + heap_bytes(blocks_);
 }
 
 }  // namespace rbcflow

@@ -1,5 +1,6 @@
 #include "wall_operator.h"
 
+#include "libsolver/common/memory_report.h"
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/kernels/stokes_kernels.h"
 #include "wall_real_space.h"
@@ -31,10 +32,10 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, targets.rows(), use),
                  wrapped(elements_->points, box), wrapped(targets_, box));
   if (real_space == RealSpace::assembled) {
-    const Eigen::SparseMatrix<double> sum =
-        near_.correction + wall_real_space_matrix(*elements_, ewald_->neighbors(), ewald_->xi());
-    near_and_real_.emplace(Eigen::SparseMatrix<double, Eigen::RowMajor>(sum));
+    near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),
+                                                  Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction)));
     node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
+    ewald_->release_real_space();  // held in near_and_real_ now
   }
 }
 
@@ -71,6 +72,15 @@ PointField WallOperator::apply(const PointField& f) {
   }
   const Eigen::VectorXd correction = near_.correction * to_vector(f);
   return u + to_field(correction);
+}
+
+void WallOperator::report_memory(MemoryReport& report, const std::string& prefix) const {
+  report.add(prefix + ": near field", matrix_bytes(near_.correction) + matrix_bytes(near_.local) +
+                                          heap_bytes(near_.coincident) + matrix_bytes(targets_));
+  if (near_and_real_) {
+    report.add(prefix + ": assembled real space", near_and_real_->memory_bytes() + matrix_bytes(*node_spreading_));
+  }
+  if (ewald_) ewald_->report_memory(report, prefix + " Ewald");
 }
 
 }  // namespace rbcflow

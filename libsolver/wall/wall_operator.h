@@ -40,6 +40,8 @@ class WallOperator {
   const NearField& near() const { return near_; }
   const PointField& targets() const { return targets_; }
   int num_targets() const { return static_cast<int>(targets_.rows()); }
+  // "<prefix>: near field", "<prefix>: assembled real space", "<prefix> Ewald: ..." (memory_report.h).
+  void report_memory(MemoryReport& report, const std::string& prefix) const;
 
  private:
   std::shared_ptr<const WallElements> elements_;

@@ -9,6 +9,7 @@
 
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/neighbor_list.h"
+#include "symmetric_block_matrix.h"
 #include "wall_elements.h"
 
 namespace rbcflow {
@@ -29,5 +30,10 @@ inline constexpr double kAssembledToleranceFactor = 0.1;
 // `pairs`: the neighbour list of the Ewald plan whose sources are the Gauss points of
 // `elements` (row 7 T + q) and whose targets are the operator's.
 Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& elements, const NeighborList& pairs, double xi);
+// The same plus `plus` (the near-field correction: NearField::correction) as symmetric blocks,
+// assembled row by row: the operator's form (wall_operator.h), without the scalar matrices in
+// between, which took ten times its memory at the peak of the set-up.
+SymmetricBlockMatrix wall_real_space_blocks(const WallElements& elements, const NeighborList& pairs, double xi,
+                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus);
 
 }  // namespace rbcflow

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libsolver/common/memory_report.h"
+
 namespace rbcflow {
 
 WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
@@ -48,6 +50,13 @@ std::vector<WallSolution> WallSolver::seed(const std::vector<PointField>& veloci
 Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const PointField& force,
                                        double box_volume) {
   return -elements.total(force) / box_volume;
+}
+
+void WallSolver::report_memory(MemoryReport& report) const {
+  op_.report_memory(report, "wall operator");
+  // L and U of the supernodal factorisation: a value and an index per nonzero.
+  report.add("wall preconditioner (LU)", static_cast<std::size_t>(near_lu_.nnzL() + near_lu_.nnzU()) * (sizeof(double) + sizeof(int)));
+  report.add("wall recycled space", matrix_bytes(recycled_.U) + matrix_bytes(recycled_.C));
 }
 
 }  // namespace rbcflow

@@ -43,6 +43,8 @@ class WallSolver {
   // restart solve alike.
   std::vector<WallSolution> seed(const std::vector<PointField>& velocities, double mu, const WallSolveOptions& options);
   int recycled_directions() const { return recycled_.size(); }
+  // "wall operator: ...", "wall preconditioner (LU)", "wall recycled space" (memory_report.h).
+  void report_memory(MemoryReport& report) const;
 
   WallOperator& op() { return op_; }
 

@@ -50,7 +50,7 @@ TEST(SymmetricBlockMatrix, ProductEqualsTheScalarSparseProduct) {
 
 // The wall operator's assembled matrices are made of symmetric blocks: the near-field
 // correction plus the real-space part of a small periodic tube converts, and its product
-// equals the scalar one.
+// equals the scalar one, whether converted from the scalar matrix or assembled row by row.
 TEST(SymmetricBlockMatrix, HoldsTheWallNearFieldAndRealSpaceParts) {
   const Eigen::Vector3d side(3.0, 3.0, 2.0);
   const WallElements e(tube(TubeSpec{2.0, 2, side, 0.4}));
@@ -68,6 +68,11 @@ TEST(SymmetricBlockMatrix, HoldsTheWallNearFieldAndRealSpaceParts) {
   const Eigen::VectorXd f = Eigen::VectorXd::Random(3 * e.num_nodes());
   const Eigen::VectorXd expected = m * f;
   EXPECT_LT((b * f - expected).norm(), 1e-14 * expected.norm());
+  // Assembled row by row (the operator's way), without the scalar matrix: the same blocks.
+  const SymmetricBlockMatrix rows =
+      wall_real_space_blocks(e, pairs, c.parameters.xi, Eigen::SparseMatrix<double, Eigen::RowMajor>(near_field(e, nodes).correction));
+  EXPECT_EQ(rows.num_blocks(), b.num_blocks());
+  EXPECT_LT((rows * f - expected).norm(), 1e-14 * expected.norm());
 }
 
 TEST(SymmetricBlockMatrix, RejectsWhatItCannotHold) {
