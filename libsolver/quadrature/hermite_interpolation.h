@@ -27,6 +27,22 @@ struct HermiteStencil {
   std::array<double, 4> theta_w;
   std::array<double, 4> phi_w;
 };
+// The same with its weights in single precision (40 bytes against 72), for the large tables
+// the singular corrections keep between products: an interpolated value then carries a relative
+// rounding error of ~1e-7, below the solver's tolerances (singular_quadrature.h).
+struct CompactHermiteStencil {
+  int i, j;
+  std::array<float, 4> theta_w;
+  std::array<float, 4> phi_w;
+  static CompactHermiteStencil of(const HermiteStencil& s) {
+    CompactHermiteStencil c{s.i, s.j, {}, {}};
+    for (int k = 0; k < 4; ++k) {
+      c.theta_w[k] = static_cast<float>(s.theta_w[k]);
+      c.phi_w[k] = static_cast<float>(s.phi_w[k]);
+    }
+    return c;
+  }
+};
 
 class HermiteInterpolator {
  public:
@@ -46,8 +62,9 @@ class HermiteInterpolator {
   // stencil by whole grid cells in phi (>= 0): the point (theta, phi + phi_shift * 2 pi / n_phi).
   // K is a compile-time constant so that the sums stay in registers: this runs for every patch
   // point of every GMRES product.
-  template <int K, typename Out>
-  void interpolate(const HermiteData& data, const HermiteStencil& s, Out&& out, int phi_shift = 0) const {
+  // Stencil: HermiteStencil or CompactHermiteStencil.
+  template <int K, typename Stencil, typename Out>
+  void interpolate(const HermiteData& data, const Stencil& s, Out&& out, int phi_shift = 0) const {
     assert(data.cols() == 4 * K);
     const int np = n_phi();
     int j = s.j + phi_shift;  // no integer division
@@ -57,10 +74,10 @@ class HermiteInterpolator {
     // The 4 data types of a corner are one 4-wide packet: weight (theta_w[2a + d_theta] *
     // phi_w[2b + d_phi]) times data, summed over the corners, then across the packet.
     using Packet = Eigen::Array4d;
-    const Packet theta[2] = {{s.theta_w[0], s.theta_w[1], s.theta_w[0], s.theta_w[1]},
-                             {s.theta_w[2], s.theta_w[3], s.theta_w[2], s.theta_w[3]}};
-    const Packet phi[2] = {{s.phi_w[0], s.phi_w[0], s.phi_w[1], s.phi_w[1]},
-                           {s.phi_w[2], s.phi_w[2], s.phi_w[3], s.phi_w[3]}};
+    const double tw[4] = {s.theta_w[0], s.theta_w[1], s.theta_w[2], s.theta_w[3]};
+    const double pw[4] = {s.phi_w[0], s.phi_w[1], s.phi_w[2], s.phi_w[3]};
+    const Packet theta[2] = {{tw[0], tw[1], tw[0], tw[1]}, {tw[2], tw[3], tw[2], tw[3]}};
+    const Packet phi[2] = {{pw[0], pw[0], pw[1], pw[1]}, {pw[2], pw[2], pw[3], pw[3]}};
     Packet sum[K];
     for (int c = 0; c < K; ++c) sum[c].setZero();
     for (int corner = 0; corner < 4; ++corner) {

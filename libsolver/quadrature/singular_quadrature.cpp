@@ -22,7 +22,9 @@ Eigen::Vector3d unit_direction(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-Eigen::Vector3d times(const std::array<double, 6>& k, const Eigen::Vector3d& v) {
+template <class Scalar>
+Eigen::Vector3d times(const std::array<Scalar, 6>& packed, const Eigen::Vector3d& v) {
+  const double k[6] = {packed[0], packed[1], packed[2], packed[3], packed[4], packed[5]};
   return {k[0] * v[0] + k[1] * v[1] + k[2] * v[2], k[1] * v[0] + k[3] * v[1] + k[4] * v[2],
           k[2] * v[0] + k[4] * v[1] + k[5] * v[2]};
 }
@@ -168,6 +170,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   const int n_tables = static_cast<int>(centres.size());
   const std::size_t per_table = static_cast<std::size_t>(n_rho) * n_varphi;
   stencils->points_per_table = per_table;
+  stencils->tables = static_cast<std::size_t>(n_tables);
   stencils->points = std::make_unique_for_overwrite<HermiteStencil[]>(n_tables * per_table);
   const auto weights = std::make_unique_for_overwrite<double[]>(n_tables * per_table);
   // Directions of the grid nodes on the parameter sphere: a node is in a patch when
@@ -255,7 +258,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
 #pragma omp parallel for schedule(dynamic, 4)
   for (int t = 0; t < n_targets; ++t) {
     const QuadratureTarget& target = targets[t];
-    const std::span<const HermiteStencil> table = stencils->of_target(t);
+    const std::span<const HermiteStencil> table = stencils->of_target(stencils->points, t);
     const double* weight = weights.get() + static_cast<std::size_t>(stencils->table[t]) * per_table;
     const int shift = stencils->phi_shift[t];
     // The patch centre as the interpolant sees it: r = x_q - x0 is measured from it so that
@@ -304,6 +307,19 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       }
     });
   }
+  if (!o.compact_tables) return;
+  // The tables in single precision for the products; the double ones were for the build.
+  const std::size_t points = static_cast<std::size_t>(n_tables) * per_table;
+  stencils->compact = std::make_unique_for_overwrite<CompactHermiteStencil[]>(points);
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = 0; q < points; ++q) stencils->compact[q] = CompactHermiteStencil::of(stencils->points[q]);
+  stencils->points.reset();
+  for (LayerCorrection* c : corrections) {
+    c->patch_kf_.resize(c->patch_k_.size());
+    for (std::size_t q = 0; q < c->patch_k_.size(); ++q)
+      for (int k = 0; k < 6; ++k) c->patch_kf_[q][k] = static_cast<float>(c->patch_k_[q][k]);
+    std::vector<PackedKernel>().swap(c->patch_k_);
+  }
 }
 
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density) const {
@@ -326,22 +342,31 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
                                 std::to_string(interp.n_theta() * interp.n_phi()) + " x 12)");
   }
   Eigen::MatrixXd out(num_targets(), 3);
+  const bool compact = stencils_->compact != nullptr;
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
-    const std::span<const HermiteStencil> table = stencils_->of_target(t);
-    const PackedKernel* k = patch_k_.data() + patch_offsets_[t];
-    const int shift = stencils_->phi_shift[t];
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (std::size_t q = 0; q < table.size(); ++q) {
-      Eigen::Vector3d psi;
-      interp.interpolate<3>(data, table[q], psi, shift);
-      sum += times(k[q], psi);
-    }
-    for (std::int64_t i = node_offsets_[t]; i < node_offsets_[t + 1]; ++i)
-      sum += times(nodes_[i].k, Eigen::Vector3d(density.row(nodes_[i].node)));
-    out.row(t) = sum;
+    out.row(t) = compact ? correction_at(t, stencils_->compact, patch_kf_.data(), density, data)
+                         : correction_at(t, stencils_->points, patch_k_.data(), density, data);
   }
   return out;
+}
+
+template <class Stencil, class Kernel>
+Eigen::Vector3d LayerCorrection::correction_at(int t, const std::unique_ptr<Stencil[]>& stencils, const Kernel* kernels,
+                                               const Eigen::MatrixXd& density, const HermiteData& data) const {
+  const HermiteInterpolator& interp = cell_->interpolator();
+  const std::span<const Stencil> table = stencils_->of_target(stencils, t);
+  const Kernel* k = kernels + patch_offsets_[t];
+  const int shift = stencils_->phi_shift[t];
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t q = 0; q < table.size(); ++q) {
+    Eigen::Vector3d psi;
+    interp.interpolate<3>(data, table[q], psi, shift);
+    sum += times(k[q], psi);
+  }
+  for (std::int64_t i = node_offsets_[t]; i < node_offsets_[t + 1]; ++i)
+    sum += times(nodes_[i].k, Eigen::Vector3d(density.row(nodes_[i].node)));
+  return sum;
 }
 
 Eigen::MatrixXd free_space_layer_on_nodes(const std::shared_ptr<const CellQuadratureGeometry>& cell,
@@ -362,14 +387,15 @@ std::size_t CellQuadratureGeometry::memory_bytes() const {
          matrix_bytes(nodes_.weight) + matrix_bytes(x_data_) + matrix_bytes(jn_data_);
 }
 
+std::size_t LayerCorrection::PatchStencils::memory_bytes() const {
+  const std::size_t n = tables * points_per_table;
+  return (points ? n * sizeof(HermiteStencil) : 0) + (compact ? n * sizeof(CompactHermiteStencil) : 0) +
+         heap_bytes(table) + heap_bytes(phi_shift);
+}
+
 void LayerCorrection::report_memory(MemoryReport& report, const std::string& prefix, bool with_stencils) const {
-  if (with_stencils) {
-    const std::size_t tables = stencils_->table.empty() ? 0 : static_cast<std::size_t>(
-        *std::max_element(stencils_->table.begin(), stencils_->table.end()) + 1);
-    report.add(prefix + ": patch stencils", tables * stencils_->points_per_table * sizeof(HermiteStencil) +
-                                                heap_bytes(stencils_->table) + heap_bytes(stencils_->phi_shift));
-  }
-  report.add(prefix + ": patch kernels", heap_bytes(patch_k_) + heap_bytes(patch_offsets_));
+  if (with_stencils) report.add(prefix + ": patch stencils", stencils_->memory_bytes());
+  report.add(prefix + ": patch kernels", heap_bytes(patch_k_) + heap_bytes(patch_kf_) + heap_bytes(patch_offsets_));
   report.add(prefix + ": node entries", heap_bytes(nodes_) + heap_bytes(node_offsets_));
   report.add(prefix + ": folded nodes", heap_bytes(folded_) + heap_bytes(folded_offsets_));
   report.add(prefix + ": targets", heap_bytes(targets_));

@@ -37,6 +37,13 @@ struct QuadratureOptions {
   int angular_points = 0;            // points in the patch angle; 0: 2 x radial
   int spline_refinement = 2;         // Hermite grid (r N + 1) x 2 r N
   double near_factor = 1.0;          // nearly singular when d < near_factor sqrt(h)
+  // Keep the patch stencils' weights and the patch kernels in single precision between
+  // products (LayerCorrection): half their memory, the largest part of a step's. They are
+  // computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
+  // over a patch), an order below the Ewald and GMRES tolerances of a run (1e-6), measured in
+  // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables...). The node
+  // entries stay in double, so folding a node into the Ewald sum stays exact.
+  bool compact_tables = true;
 };
 int default_radial_points(int order);
 
@@ -147,14 +154,23 @@ class LayerCorrection {
   // whole Hermite cells); any other target has a table of its own. Every table holds the whole
   // polar rule, points_per_table points, all in one array allocated without initialisation.
   struct PatchStencils {
-    std::size_t points_per_table = 0;
-    std::unique_ptr<HermiteStencil[]> points;  // table b: [b, b + 1) * points_per_table
-    std::vector<int> table, phi_shift;         // per target
-    std::span<const HermiteStencil> of_target(int t) const {
-      return {points.get() + static_cast<std::size_t>(table[t]) * points_per_table, points_per_table};
+    std::size_t points_per_table = 0, tables = 0;
+    // table b: [b, b + 1) * points_per_table, in one of the two precisions (compact_tables)
+    std::unique_ptr<HermiteStencil[]> points;
+    std::unique_ptr<CompactHermiteStencil[]> compact;
+    std::vector<int> table, phi_shift;  // per target
+    template <class Stencil>
+    std::span<const Stencil> of_target(const std::unique_ptr<Stencil[]>& all, int t) const {
+      return {all.get() + static_cast<std::size_t>(table[t]) * points_per_table, points_per_table};
     }
+    std::size_t memory_bytes() const;
   };
   using PackedKernel = std::array<double, 6>;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
+  using CompactKernel = std::array<float, 6>;
+  // The correction at target t for the density's Hermite data, with either precision's tables.
+  template <class Stencil, class Kernel>
+  Eigen::Vector3d correction_at(int t, const std::unique_ptr<Stencil[]>& stencils, const Kernel* kernels,
+                                const Eigen::MatrixXd& density, const HermiteData& data) const;
   struct NodeEntry {
     int node;
     PackedKernel k;
@@ -166,7 +182,8 @@ class LayerCorrection {
   std::shared_ptr<const PatchStencils> stencils_;
   // Per target t, entries [offsets[t], offsets[t + 1]) of each array (one allocation each
   // rather than one per target).
-  std::vector<PackedKernel> patch_k_;  // in the order of the target's table
+  std::vector<PackedKernel> patch_k_;  // in the order of the target's table (compact_tables off)
+  std::vector<CompactKernel> patch_kf_;  // the same in single precision (compact_tables on)
   std::vector<NodeEntry> nodes_;       // nodes in the patch: -eta K w
   std::vector<PatchNode> folded_;      // nodes in the patch left to the caller
   std::vector<std::int64_t> patch_offsets_, node_offsets_, folded_offsets_;

@@ -263,3 +263,51 @@ TEST(LayerCorrection, FoldedPatchNodesGiveTheSameLayers) {
   EXPECT_GT(folded_in[1], 0u);
   EXPECT_LT(folded_in[1], folded_in[0]);  // the small box keeps part of the patches in the corrections
 }
+
+// The tables kept in single precision (QuadratureOptions::compact_tables, the default) against
+// double: a red cell at N = 16 as in the runs, its self corrections and nearly-singular ones at
+// targets 0.05 off the surface, free-space and Ewald real-space kernels, a smooth density. The
+// difference, relative to the correction itself, must stay below the 1e-6 Ewald and GMRES
+// tolerances of a run; float rounding summed over a patch predicts ~1e-7.
+TEST(LayerCorrection, CompactTablesChangeTheCorrectionsBelowTheSolverTolerance) {
+  const int N = 16;
+  const SHSurface s = make_biconcave(N);
+  QuadratureOptions full;
+  full.compact_tables = false;
+  const auto grids = CellGrids::make(N, 3 * N);
+  const auto compact_cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), grids);
+  const auto full_cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), grids, full);
+  std::vector<QuadratureTarget> near;
+  for (auto [t, p] : {std::pair{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}, {2.9, 1.0}}) {
+    const Eigen::Vector3d xs = sh_evaluate(s.coeffs(), t, p).transpose();
+    const Eigen::Vector3d a1 = sh_evaluate(s.coeffs(), t, p, 1, 0).transpose();
+    const Eigen::Vector3d a2 = sh_evaluate(s.coeffs(), t, p, 0, 1).transpose();
+    const Eigen::Vector3d x0 = xs + 0.05 * a1.cross(a2).normalized();
+    const SurfaceProjection proj = project_onto_surface(s.coeffs(), x0, t, p);
+    ASSERT_TRUE(proj.converged);
+    near.push_back({x0, proj.theta, proj.phi, proj.distance, -1});
+  }
+  const SourceNodes& nodes = compact_cell->nodes();
+  Eigen::MatrixXd density(nodes.size(), 3);
+  for (int i = 0; i < nodes.size(); ++i) {
+    const Eigen::Vector3d x = nodes.x.row(i);
+    density.row(i) << std::sin(x.y()) + 0.3, x.x() * x.z(), std::cos(x.x() + 0.5 * x.y());
+  }
+  double worst = 0.0;
+  for (const double xi : {0.0, 0.8}) {
+    for (const auto& targets : {compact_cell->node_targets(), near}) {
+      const auto compact = LayerCorrection::single_and_double(compact_cell, xi, xi, targets);
+      const auto reference = LayerCorrection::single_and_double(full_cell, xi, xi, targets);
+      for (int l = 0; l < 2; ++l) {
+        const Eigen::MatrixXd a = (l == 0 ? compact.first : compact.second)->apply(density);
+        const Eigen::MatrixXd b = (l == 0 ? reference.first : reference.second)->apply(density);
+        const double difference = (a - b).norm() / b.norm();
+        std::printf("  xi %.1f, %s targets, %s layer: relative difference %.1e\n", xi,
+                    targets.size() == near.size() ? "near" : "node", l == 0 ? "single" : "double", difference);
+        worst = std::max(worst, difference);
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(worst, 0.0);  // the compact tables are in use
+}
