@@ -250,7 +250,11 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   for (LayerCorrection* c : corrections) {
     for (std::vector<std::int64_t>* offsets : {&c->patch_offsets_, &c->node_offsets_, &c->folded_offsets_})
       for (int t = 0; t < n_targets; ++t) (*offsets)[t + 1] += (*offsets)[t];
-    c->patch_k_.resize(c->patch_offsets_.back());
+    if (o.compact_tables) {
+      c->patch_kf_.resize(c->patch_offsets_.back());
+    } else {
+      c->patch_k_.resize(c->patch_offsets_.back());
+    }
     c->nodes_.resize(c->node_offsets_.back());
     c->folded_.resize(c->folded_offsets_.back());
   }
@@ -275,7 +279,13 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, jn) * (jn.norm() * weight[q]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, jn * weight[q]));
-        c->patch_k_[c->patch_offsets_[t] + q] = pack(k);
+        const std::size_t at = static_cast<std::size_t>(c->patch_offsets_[t]) + q;
+        if (o.compact_tables) {
+          const PackedKernel packed = pack(k);
+          for (int e = 0; e < 6; ++e) c->patch_kf_[at][e] = static_cast<float>(packed[e]);
+        } else {
+          c->patch_k_[at] = pack(k);
+        }
       }
     }
     // The regular rule's share of the patch, eta K w at the nodes inside it, is removed here,
@@ -308,18 +318,13 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     });
   }
   if (!o.compact_tables) return;
-  // The tables in single precision for the products; the double ones were for the build.
+  // The stencils in single precision for the products (the kernels were stored so as they
+  // were computed); the double ones were for the build.
   const std::size_t points = static_cast<std::size_t>(n_tables) * per_table;
   stencils->compact = std::make_unique_for_overwrite<CompactHermiteStencil[]>(points);
 #pragma omp parallel for schedule(static)
   for (std::size_t q = 0; q < points; ++q) stencils->compact[q] = CompactHermiteStencil::of(stencils->points[q]);
   stencils->points.reset();
-  for (LayerCorrection* c : corrections) {
-    c->patch_kf_.resize(c->patch_k_.size());
-    for (std::size_t q = 0; q < c->patch_k_.size(); ++q)
-      for (int k = 0; k < 6; ++k) c->patch_kf_[q][k] = static_cast<float>(c->patch_k_[q][k]);
-    std::vector<PackedKernel>().swap(c->patch_k_);
-  }
 }
 
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density) const {
