@@ -14,9 +14,15 @@ namespace rbcflow {
 
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
-                       SpmeGridCache* grid_cache)
+                       SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density)
     : grids_(std::move(grids)), domain_(domain), grid_cache_(grid_cache) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
+  if (single_layer_density) {
+    if (single_layer_density->rows() != static_cast<Eigen::Index>(cells.size()) * nodes_per_cell() ||
+        single_layer_density->cols() != 3)
+      throw std::invalid_argument("CellLayers: the single-layer density must be (nodes x 3)");
+    single_density_ = *single_layer_density;
+  }
   ScopedTimer geometry_timer(timings_.geometry);
   const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
   cells_.resize(nc);
@@ -52,6 +58,18 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   self_single_.resize(nc);
   self_double_.resize(nc);
   near_.resize(nc);
+  // With a single-layer density, each single-layer correction is applied as it is built and its
+  // tables freed (its folded nodes stay for the plan's pair shares): the self rows of a cell and
+  // the rows of its near targets, added up after the loops.
+  Eigen::MatrixXd single_corrections;
+  std::vector<Eigen::MatrixXd> near_single(nc);
+  const auto apply_now = [&](int c, LayerCorrection& correction) {
+    const Eigen::MatrixXd block = cell_block(*single_density_, c);
+    Eigen::MatrixXd out = correction.apply(block, cells_[c]->patch_data(block));
+    correction.release_tables();
+    return out;
+  };
+  if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nc * np, 3);
   ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
@@ -63,6 +81,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets,
                                                           fold_radius[0]);
     }
+    if (single_density_) single_corrections.middleRows(c * np, np) = apply_now(c, *self_single_[c]);
   }
   self_timer.stop();
   ScopedTimer near_timer(timings_.near);
@@ -84,8 +103,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single},
                                                           near_targets, fold_radius[0]);
     }
+    if (single_density_) near_single[c] = apply_now(c, *near_[c].single);
   }
   near_timer.stop();
+  if (single_density_) {
+    for (int c = 0; c < nc; ++c)
+      for (std::size_t k = 0; k < near_[c].rows.size(); ++k) single_corrections.row(near_[c].rows[k]) += near_single[c].row(k);
+  }
   if (domain_.box) {
     ScopedTimer plans_timer(timings_.geometry);
     single_plan_ = std::make_unique<EwaldPlan>(single_grid, nodes_.x, folded_shares(Layer::single));
@@ -96,6 +120,24 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
         if (k) k->release_folded();
     }
   }
+  if (single_density_) {
+    single_layer_ = regular_single_layer(*single_density_) + single_corrections;
+    single_plan_.reset();
+    for (int c = 0; c < nc; ++c) {
+      self_single_[c].reset();
+      near_[c].single.reset();
+    }
+  }
+}
+
+Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
+  if (single_plan_) {
+    const PointField weighted = f.array().colwise() * nodes_.weight.array();
+    return single_plan_->single_layer(weighted);
+  }
+  std::vector<int> self(nodes_.size());
+  for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
+  return regular_layer_sum(nodes_, f, LayerKernel{Layer::single, 0.0}, nodes_.x, self);
 }
 
 PairShares CellLayers::folded_shares(Layer layer) const {
@@ -162,16 +204,12 @@ Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd
 
 Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
   if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
-  Eigen::MatrixXd regular;
-  if (single_plan_) {
-    const PointField weighted = f.array().colwise() * nodes_.weight.array();
-    regular = single_plan_->single_layer(weighted);
-  } else {
-    std::vector<int> self(nodes_.size());
-    for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
-    regular = regular_layer_sum(nodes_, f, LayerKernel{Layer::single, 0.0}, nodes_.x, self);
+  if (single_layer_) {
+    if (f != *single_density_)
+      throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
+    return *single_layer_;
   }
-  return regular + apply_corrections(Layer::single, f);
+  return regular_single_layer(f) + apply_corrections(Layer::single, f);
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
@@ -194,13 +232,14 @@ void CellLayers::report_memory(MemoryReport& report) const {
   std::size_t geometry = matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight);
   for (const auto& c : cells_) geometry += c->memory_bytes();
   report.add("cell geometry", geometry);
+  if (single_layer_) report.add("single layer of the step's traction", matrix_bytes(*single_layer_) + matrix_bytes(*single_density_));
   for (int c = 0; c < num_cells(); ++c) {
-    self_single_[c]->report_memory(report, "self corrections");
-    if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", false);
+    if (self_single_[c]) self_single_[c]->report_memory(report, "self corrections");
+    if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", !self_single_[c]);
     const NearCorrection& n = near_[c];
     report.add("near corrections: targets", heap_bytes(n.rows));
     if (n.single) n.single->report_memory(report, "near corrections");
-    if (n.double_) n.double_->report_memory(report, "near corrections", false);
+    if (n.double_) n.double_->report_memory(report, "near corrections", !n.single);
   }
   if (single_plan_) single_plan_->report_memory(report, "cell Ewald single");
   if (double_plan_) double_plan_->report_memory(report, "cell Ewald double");

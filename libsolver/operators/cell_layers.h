@@ -51,9 +51,14 @@ class CellLayers {
  public:
   // with_double_layer = false skips everything the double layer needs (lambda = 1). SPME grids
   // come from `grid_cache` when given (kept across steps; it must outlive this object).
+  // single_layer_density (stacked nodes x 3), when given: the single layer of that density, the
+  // only one a time step needs (its traction, in every sweep of the step), is computed here,
+  // each cell's single-layer corrections applied as soon as they are built and freed, and the
+  // single-layer Ewald plan freed after its one product: kept, they were a third of a step's
+  // memory. single_layer(f) then returns it, for that density only.
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
              const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true,
-             SpmeGridCache* grid_cache = nullptr);
+             SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr);
   ~CellLayers();
 
   int num_cells() const { return static_cast<int>(cells_.size()); }
@@ -70,6 +75,7 @@ class CellLayers {
   // corrections: ...", "near corrections: ...", "cell Ewald single/double: ...".
   void report_memory(MemoryReport& report) const;
 
+  // Throws std::logic_error for another density than the one given to the constructor, if one was.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
 
@@ -79,6 +85,8 @@ class CellLayers {
     std::vector<int> rows;  // stacked target rows
   };
   Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density);
+  // The single layer's regular sums (SPME + real space, or direct in free space).
+  Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
   // The patch nodes the layer's corrections left to the real-space sum, by target row.
   PairShares folded_shares(Layer layer) const;
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
@@ -91,6 +99,9 @@ class CellLayers {
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
+  // With a single_layer_density: that density and its single layer (the corrections and the
+  // single-layer plan above are then empty).
+  std::optional<Eigen::MatrixXd> single_density_, single_layer_;
   CellLayersTimings timings_;
 };
 

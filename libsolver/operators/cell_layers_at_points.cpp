@@ -9,8 +9,14 @@
 
 namespace rbcflow {
 
-CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points)
+CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
+                                       const Eigen::MatrixXd* single_layer_density)
     : layers_(layers), points_(points) {
+  if (single_layer_density) {
+    if (single_layer_density->rows() != layers.nodes().size() || single_layer_density->cols() != 3)
+      throw std::invalid_argument("CellLayersAtPoints: the single-layer density must be (cell nodes x 3)");
+    single_density_ = *single_layer_density;
+  }
   const LayerDomain& domain = layers.domain();
   const int nc = layers.num_cells();
   const long ns = layers.nodes().size();
@@ -27,6 +33,8 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double);
   }
   near_.resize(nc);
+  std::vector<Eigen::MatrixXd> near_single(nc);
+  const int np = layers.nodes_per_cell();
 #pragma omp parallel for schedule(dynamic)
   for (int c = 0; c < nc; ++c) {
     NearTargets near = find_near_targets(layers.cell(c), points_, domain.box);
@@ -39,7 +47,24 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
       near_[c].single = std::make_unique<LayerCorrection>(layers.cell_geometry(c), LayerKernel{Layer::single, xi_single},
                                                           near.targets);
     }
+    if (single_density_) {
+      near_single[c] = near_[c].single->apply(single_density_->middleRows(c * np, np));
+      near_[c].single.reset();
+    }
   }
+  if (single_density_) {
+    Eigen::MatrixXd corrections = Eigen::MatrixXd::Zero(points_.rows(), 3);
+    for (int c = 0; c < nc; ++c)
+      for (std::size_t k = 0; k < near_[c].rows.size(); ++k) corrections.row(near_[c].rows[k]) += near_single[c].row(k);
+    single_layer_ = regular_single_layer(*single_density_) + corrections;
+    single_plan_.reset();
+  }
+}
+
+Eigen::MatrixXd CellLayersAtPoints::regular_single_layer(const Eigen::MatrixXd& f) const {
+  const SourceNodes& nodes = layers_.nodes();
+  if (single_plan_) return single_plan_->single_layer(f.array().colwise() * nodes.weight.array());
+  return regular_layer_sum(nodes, f, LayerKernel{Layer::single, 0.0}, points_);
 }
 
 CellLayersAtPoints::~CellLayersAtPoints() = default;
@@ -67,13 +92,12 @@ Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::Matrix
 Eigen::MatrixXd CellLayersAtPoints::single_layer(const Eigen::MatrixXd& f) const {
   const SourceNodes& nodes = layers_.nodes();
   if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
-  Eigen::MatrixXd regular;
-  if (single_plan_) {
-    regular = single_plan_->single_layer(f.array().colwise() * nodes.weight.array());
-  } else {
-    regular = regular_layer_sum(nodes, f, LayerKernel{Layer::single, 0.0}, points_);
+  if (single_layer_) {
+    if (f != *single_density_)
+      throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
+    return *single_layer_;
   }
-  return regular + corrections(Layer::single, f);
+  return regular_single_layer(f) + corrections(Layer::single, f);
 }
 
 Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const {
@@ -93,10 +117,11 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
 
 void CellLayersAtPoints::report_memory(MemoryReport& report, const std::string& prefix) const {
   report.add(prefix + " near corrections: targets", matrix_bytes(points_));
+  if (single_layer_) report.add(prefix + " single layer of the step's traction", matrix_bytes(*single_layer_) + matrix_bytes(*single_density_));
   for (const Near& n : near_) {
     report.add(prefix + " near corrections: targets", heap_bytes(n.rows));
     if (n.single) n.single->report_memory(report, prefix + " near corrections");
-    if (n.double_) n.double_->report_memory(report, prefix + " near corrections", false);
+    if (n.double_) n.double_->report_memory(report, prefix + " near corrections", !n.single);
   }
   if (single_plan_) single_plan_->report_memory(report, prefix + " Ewald single");
   if (double_plan_) double_plan_->report_memory(report, prefix + " Ewald double");

@@ -6,6 +6,7 @@
 // step from the step's CellLayers; the products are linear in the densities.
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,10 @@ namespace rbcflow {
 
 class CellLayersAtPoints {
  public:
-  CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points);
+  // single_layer_density: as in CellLayers, the one single-layer density of the step (its
+  // traction), whose single layer is computed here with its corrections and plan freed after use.
+  CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
+                     const Eigen::MatrixXd* single_layer_density = nullptr);
   ~CellLayersAtPoints();
 
   int num_points() const { return static_cast<int>(points_.rows()); }
@@ -24,6 +28,7 @@ class CellLayersAtPoints {
   void report_memory(MemoryReport& report, const std::string& prefix) const;
 
   // Densities stacked over the cells as in CellLayers; the results have one row per point.
+  // single_layer throws std::logic_error for another density than the constructor's, if given.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u) const;
 
@@ -33,11 +38,13 @@ class CellLayersAtPoints {
     std::vector<int> rows;
   };
   Eigen::MatrixXd corrections(Layer layer, const Eigen::MatrixXd& density) const;
+  Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f) const;
 
   const CellLayers& layers_;
   Eigen::MatrixXd points_;
   std::vector<Near> near_;  // per cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
+  std::optional<Eigen::MatrixXd> single_density_, single_layer_;
 };
 
 }  // namespace rbcflow

@@ -339,7 +339,17 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHC
   return apply(density, cell_->interpolator().node_data(c));
 }
 
+void LayerCorrection::release_tables() {
+  stencils_.reset();
+  std::vector<PackedKernel>().swap(patch_k_);
+  std::vector<CompactKernel>().swap(patch_kf_);
+  std::vector<NodeEntry>().swap(nodes_);
+  std::vector<std::int64_t>().swap(patch_offsets_);
+  std::vector<std::int64_t>().swap(node_offsets_);
+}
+
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const HermiteData& data) const {
+  if (!stencils_) throw std::logic_error("LayerCorrection::apply: its tables were released");
   const HermiteInterpolator& interp = cell_->interpolator();
   if (density.rows() != cell_->grids().n_grid->grid().size() || density.cols() != 3 ||
       data.rows() != static_cast<Eigen::Index>(interp.n_theta()) * interp.n_phi() || data.cols() != 12) {
@@ -399,7 +409,7 @@ std::size_t LayerCorrection::PatchStencils::memory_bytes() const {
 }
 
 void LayerCorrection::report_memory(MemoryReport& report, const std::string& prefix, bool with_stencils) const {
-  if (with_stencils) report.add(prefix + ": patch stencils", stencils_->memory_bytes());
+  if (with_stencils && stencils_) report.add(prefix + ": patch stencils", stencils_->memory_bytes());
   report.add(prefix + ": patch kernels", heap_bytes(patch_k_) + heap_bytes(patch_kf_) + heap_bytes(patch_offsets_));
   report.add(prefix + ": node entries", heap_bytes(nodes_) + heap_bytes(node_offsets_));
   report.add(prefix + ": folded nodes", heap_bytes(folded_) + heap_bytes(folded_offsets_));

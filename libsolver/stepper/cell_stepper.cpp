@@ -112,24 +112,26 @@ FlowSolution CellStepper::solve() const {
       s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
       s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
     }
+    for (int c = 0; c < nc; ++c) {
+      if (cells_[c].body_force.isZero()) continue;
+      const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
+      s.traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
+    }
     membrane_timer.stop();
+    // The traction is the step's only single-layer density: its single layer is computed as
+    // the operator is built, and the single-layer tables freed (cell_layers.h).
     layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0,
-                                          grid_cache_.get());
+                                          grid_cache_.get(), &s.traction);
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
     timing.near_corrections = layers->build_timings().near;
-    for (int c = 0; c < nc; ++c) {
-      if (cells_[c].body_force.isZero()) continue;
-      const double area = layers->cell(c).nodes().weight.sum();
-      s.traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
-    }
   }
 
   // (12): the wall force for the cells' traction and the velocity U (previous step's).
   std::unique_ptr<CellLayersAtPoints> at_wall;
   if (wall_ && nc > 0) {
     ScopedTimer timer(timing.at_wall_build);
-    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes());
+    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes(), &s.traction);
     s.near_wall_points = at_wall->near_points();
   }
   auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
