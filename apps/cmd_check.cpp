@@ -147,9 +147,8 @@ void print_output(const Case& c) {
   }
 }
 
-// The parameters libsolver's chooser picks for each Ewald sum of the run (scenario.h); their
-// grids are added to the memory estimate.
-void print_ewald(const Scenario& s, MemoryEstimate& memory) {
+// The parameters libsolver's chooser picks for each Ewald sum of the run (scenario.h).
+void print_ewald(const Scenario& s) {
   std::printf("ewald:   tolerance %g\n", s.c.ewald.tolerance);
   for (const EwaldSum& sum : s.ewald) {
     std::printf("         %s (%ld nodes):\n", sum.what.c_str(), sum.nodes);
@@ -157,7 +156,20 @@ void print_ewald(const Scenario& s, MemoryEstimate& memory) {
     std::string line;
     std::getline(lines, line);  // the heading repeats the kernel and tolerance
     while (std::getline(lines, line)) std::printf("         %s\n", line.c_str());
-    memory.ewald += ewald_grid_bytes(sum.choice.parameters.grid);
+  }
+}
+
+// The estimate of the run's peak memory by part, against its budget (memory_budget.h).
+void print_memory(const Scenario& s) {
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  std::printf("memory:  about %.2f GiB at the peak of a step, of a budget of %.2f GiB (%s)\n", s.memory.total() / kGiB,
+              s.memory_budget / kGiB, s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory");
+  for (const MemoryEstimate::Part& p : s.memory.parts) std::printf("         %-28s %8.3f GiB\n", p.name.c_str(), p.bytes / kGiB);
+  std::printf("         (1.3 x the parts, for what a step builds and frees, + 60 MB for the program)\n");
+  if (s.memory.kept_coefficients > 0) {
+    std::printf("         Ewald pair coefficients %s (%.3f GiB of the cells' Ewald sum)\n",
+                s.keeps_pair_coefficients ? "kept between products" : "recomputed in every product to fit the budget",
+                s.memory.kept_coefficients / kGiB);
   }
 }
 
@@ -171,8 +183,9 @@ int run_check(Args& args) {
         "  meshed and checked, the cells placed (or listed), perturbed and checked against the\n"
         "  wall and each other (exit status 2 with file, line and key on an error). Prints the\n"
         "  derived parameters: cell count and tube hematocrit of the meshed lumen, grid sizes, the\n"
-        "  time step limit (37), the Ewald parameters the solver will choose, the output, and a\n"
-        "  rough memory estimate.\n");
+        "  time step limit (37), the Ewald parameters the solver will choose, the output, and the\n"
+        "  estimate of the run's peak memory by part against its budget (solver.memory_gib or the\n"
+        "  machine's memory; a case over it is refused).\n");
     return 0;
   }
   const std::string file = args.positional("case file (CASE.toml)");
@@ -181,15 +194,12 @@ int run_check(Args& args) {
   check_output_dir(c, c.output.dir);
   const Scenario s = prepare_scenario(c);
 
-  const long count = static_cast<long>(s.cells.size());
-  const int wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;
-  MemoryEstimate memory = memory_estimate(c, static_cast<int>(count), wall_nodes);
   std::printf("case:    %s: \"%s\"\n", file.c_str(), c.title.c_str());
   print_domain(c);
   print_vessel(s);
   print_cells(s);
   print_time(s);
-  if (c.domain.kind == DomainKind::periodic) print_ewald(s, memory);
+  if (c.domain.kind == DomainKind::periodic) print_ewald(s);
   std::printf("solver:  GMRES tolerance %g, at most %d iterations\n", c.solver.gmres_tolerance,
               c.solver.max_iterations);
   if (c.cells) {
@@ -198,10 +208,8 @@ int run_check(Args& args) {
                 c.solver.patch_radial_points ? "set" : "default, max(8, ceil(3 sqrt(N)))");
   }
   print_output(c);
-  std::printf("memory:  about %.0f MB (rough model: cells %.0f MB", memory.total() / 1e6, memory.cells / 1e6);
-  if (wall_nodes > 0) std::printf(", wall %.0f MB", memory.wall / 1e6);
-  if (memory.ewald > 0) std::printf(", Ewald grids %.0f MB", memory.ewald / 1e6);
-  std::printf(")\ncase OK\n");
+  print_memory(s);
+  std::printf("case OK\n");
   return 0;
 }
 

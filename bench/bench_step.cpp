@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    auto stepper = bench::make_step_case(name);
+    bench::StepCase step_case = bench::make_step_case(name);
+    auto& stepper = step_case.stepper;
     const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("case %s: %zu cells, %d threads, set-up %.2f s, peak memory after set-up %.0f MB\n", name.c_str(),
                 stepper->cells().size(), omp_get_max_threads(), setup, peak_resident_mb());
@@ -106,7 +107,8 @@ int main(int argc, char** argv) {
     for (const MemoryReport::Item& i : memory.items())
       if (i.bytes > 0) std::printf("  %-52s %8.3f\n", i.name.c_str(), i.bytes / 1048576.0 / cells);
     std::printf("  %-52s %8.3f\n", "total", memory.total() / 1048576.0 / cells);
-    std::printf("peak memory %.0f MB (%.1f MB per cell)\n", peak_mb, peak_mb / cells);
+    std::printf("peak memory %.0f MB (%.1f MB per cell); rbcflow check's estimate %.0f MB\n", peak_mb, peak_mb / cells,
+                step_case.estimated_peak_bytes / 1048576.0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());
     return 1;

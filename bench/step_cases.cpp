@@ -15,15 +15,16 @@ namespace fs = std::filesystem;
 
 constexpr double kDt = 1e-3;
 
-std::unique_ptr<CellStepper> from_case(Case c) {
+StepCase from_case(Case c) {
   c.time.dt = kDt;
   Scenario s = prepare_scenario(c);
-  return make_stepper(s);
+  const double estimate = s.memory.total();
+  return {make_stepper(s), estimate};
 }
 
 // data/cases/tube_27_cells.toml with `count` cells at its tube hematocrit: the period grows with
 // the count (13.33 for 27 cells), the cells placed by the same code as rbcflow run's.
-std::unique_ptr<CellStepper> tube_cells(int count) {
+StepCase tube_cells(int count) {
   Case c = read_case(fs::path(RBCFLOW_CASES_DIR) / "tube_27_cells.toml");
   c.domain.box[2] = 13.33 * count / 27.0;
   c.cells->hematocrit.reset();
@@ -33,7 +34,7 @@ std::unique_ptr<CellStepper> tube_cells(int count) {
 
 }  // namespace
 
-std::unique_ptr<CellStepper> make_step_case(const std::string& name) {
+StepCase make_step_case(const std::string& name) {
   if (name == "single" || name == "minicase") {
     return from_case(read_case(fs::path(RBCFLOW_BENCH_CASES_DIR) / (name + ".toml")));
   }

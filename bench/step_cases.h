@@ -21,7 +21,12 @@
 
 namespace rbcflow::bench {
 
+struct StepCase {
+  std::unique_ptr<CellStepper> stepper;
+  double estimated_peak_bytes = 0;  // rbcflow check's memory model (scenario/memory_budget.h)
+};
+
 // Throws std::invalid_argument for an unknown name.
-std::unique_ptr<CellStepper> make_step_case(const std::string& name);
+StepCase make_step_case(const std::string& name);
 
 }  // namespace rbcflow::bench

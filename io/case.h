@@ -120,6 +120,9 @@ struct CaseSolver {
   // Radial Gauss points of the singular and nearly-singular patches (section 5.4); the
   // angular points are twice as many. Empty: libsolver's default, max(8, ceil(3 sqrt(N))).
   std::optional<int> patch_radial_points;
+  // The memory the run may use, GiB; empty: the machine's physical memory. rbcflow check and
+  // run refuse a case whose estimate exceeds it (scenario/memory_budget.h).
+  std::optional<double> memory_gib;
   bool operator==(const CaseSolver&) const = default;
 };
 

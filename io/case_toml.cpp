@@ -504,6 +504,7 @@ CaseSolver read_solver(Table& top) {
   s.gmres_tolerance = t->real("gmres_tolerance", s.gmres_tolerance, open(0, 1));
   s.max_iterations = t->integer("max_iterations", s.max_iterations, 1, 100000);
   s.patch_radial_points = t->optional_integer("patch_radial_points", 4, 64);
+  s.memory_gib = t->optional_real("memory_gib", open_closed(0, 1e6));
   t->finish();
   return s;
 }

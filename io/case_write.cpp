@@ -225,6 +225,7 @@ std::string case_toml(const Case& c) {
   w.key("gmres_tolerance", c.solver.gmres_tolerance);
   w.key("max_iterations", c.solver.max_iterations);
   if (c.solver.patch_radial_points) w.key("patch_radial_points", *c.solver.patch_radial_points);
+  if (c.solver.memory_gib) w.key("memory_gib", *c.solver.memory_gib);
   write_time(w, c.time);
   write_output(w, c.output);
   return w.str();

@@ -60,21 +60,4 @@ double flow_period(const Case& c) {
   return c.domain.kind == DomainKind::periodic ? c.domain.box[flow_axis(c)] : 0.0;
 }
 
-MemoryEstimate memory_estimate(const Case& c, int cells, int wall_nodes) {
-  MemoryEstimate m;
-  constexpr double kDouble = sizeof(double);
-  if (c.cells) {
-    const double n = c.cells->order, big = n * c.cells->dealias;
-    const double grid = 2 * n * n, fine = 2 * big * big;
-    const double patches = grid * (n / 2) * (n / 2) * 3;  // 3 weights per patch point
-    m.cells = cells * kDouble * (48 * (grid + fine) + patches);
-  }
-  m.wall = kDouble * 200.0 * wall_nodes;
-  return m;
-}
-
-double ewald_grid_bytes(const std::array<int, 3>& grid) {
-  return sizeof(double) * 6.0 * grid[0] * grid[1] * grid[2];
-}
-
 }  // namespace rbcflow

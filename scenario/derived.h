@@ -1,6 +1,6 @@
 #pragma once
 // Parameters derived from a case alone, before its vessel is built: the reference cell, the
-// time step (37), the flow axis, the memory model. No solver needed; the Ewald parameters are
+// time step (37), the flow axis. No solver needed; the Ewald parameters are
 // the solver's to choose. What needs the meshed vessel (cell count, hematocrit) is in
 // scenario.h.
 #include <array>
@@ -35,18 +35,5 @@ int flow_axis(const Case& c);
 // wrapped into it (RenderOptions::period).
 double flow_period(const Case& c);
 
-// A rough memory model (bytes), documented in docs/case-format.md: per cell 48 doubles on
-// each point of the N x 2N and M x 2M grids plus near-singular patches of (N/2)^2 points
-// per grid point; the wall 200 doubles per node. `rbcflow check` adds the Ewald grids the
-// solver chooses (ewald_grid_bytes).
-struct MemoryEstimate {
-  double cells = 0;
-  double wall = 0;
-  double ewald = 0;
-  double total() const { return cells + wall + ewald; }
-};
-MemoryEstimate memory_estimate(const Case& c, int cells, int wall_nodes);
-// The memory model's bytes for one SPME grid (6 arrays of doubles).
-double ewald_grid_bytes(const std::array<int, 3>& grid);
 
 }  // namespace rbcflow

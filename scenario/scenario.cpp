@@ -1,6 +1,7 @@
 #include "scenario/scenario.h"
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -82,7 +83,7 @@ CellStepperOptions solver_options(const Case& c) {
 
 // The sums the solver will set up, each chosen from ewald.tolerance for its node count as
 // libsolver's operators choose them; a tolerance too tight for the size is refused here.
-std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes) try {
+std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes, std::int64_t max_kept_pairs) try {
   std::vector<EwaldSum> sums;
   const PeriodicBox box(to_eigen(c.domain.box));
   const double tolerance = c.ewald.tolerance;
@@ -92,7 +93,7 @@ std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes
   if (cell_nodes > 0) {
     add("cells, single layer", EwaldKernel::stokeslet, cell_nodes, {});
     if (c.domain.viscosity_ratio != 1.0) {
-      add("cells, double layer", EwaldKernel::stresslet, cell_nodes, kDoubleLayerRealSpace);
+      add("cells, double layer", EwaldKernel::stresslet, cell_nodes, double_layer_real_space(max_kept_pairs));
     }
   }
   if (wall_nodes > 0) add("wall, single layer", EwaldKernel::stokeslet, wall_nodes, {});
@@ -117,7 +118,8 @@ Scenario prepare_scenario(const Case& c) {
   }
   const long wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;
   if (!c.cells) {
-    if (c.domain.kind == DomainKind::periodic) s.ewald = ewald_sums(c, 0, wall_nodes);
+    if (c.domain.kind == DomainKind::periodic) s.ewald = ewald_sums(c, 0, wall_nodes, 0);
+    apply_memory_budget(s);
     return s;
   }
   const CaseCells& k = *c.cells;
@@ -137,8 +139,13 @@ Scenario prepare_scenario(const Case& c) {
     s.cells.push_back(std::move(cell));
   }
   if (s.lumen_volume) s.tube_hematocrit = cells_volume / *s.lumen_volume;
+  const long cell_nodes = static_cast<long>(s.cells.size()) * s.grids->n_grid->grid().size();
   if (c.domain.kind == DomainKind::periodic) {
-    s.ewald = ewald_sums(c, static_cast<long>(s.cells.size()) * s.grids->n_grid->grid().size(), wall_nodes);
+    s.ewald = ewald_sums(c, cell_nodes, wall_nodes, s.options.domain.max_kept_pairs);
+  }
+  apply_memory_budget(s);
+  if (!s.keeps_pair_coefficients && c.domain.kind == DomainKind::periodic) {
+    s.ewald = ewald_sums(c, cell_nodes, wall_nodes, s.options.domain.max_kept_pairs);  // the choice without them
   }
   return s;
 }

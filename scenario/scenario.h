@@ -14,6 +14,7 @@
 #include "io/case.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/stepper/cell_stepper.h"
+#include "scenario/memory_budget.h"
 
 namespace rbcflow {
 
@@ -36,10 +37,13 @@ struct Scenario {
   std::optional<double> tube_hematocrit;   // the cells' volume over the lumen's, with a vessel
   std::optional<std::string> placement_note;  // cells placed pre-deformed: how
   std::vector<EwaldSum> ewald;             // in a periodic domain
+  MemoryEstimate memory;                   // the run's peak, by part (memory_budget.h)
+  double memory_budget = 0;                // bytes
+  bool keeps_pair_coefficients = true;     // false: dropped to fit the budget
 };
 
 // Throws CaseError (exit 2) naming the key for everything that shows only once the vessel is
-// meshed or the cells placed.
+// meshed or the cells placed, and for a run that cannot fit its memory budget.
 Scenario prepare_scenario(const Case& c);
 
 // The stepper of a prepared scenario (its cells are moved into it): the wall's boundary

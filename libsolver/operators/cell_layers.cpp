@@ -49,7 +49,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     fold_radius[0] = pair_share_radius(box, single_grid->parameters().cutoff);
     if (with_double_layer) {
       double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
-                               kDoubleLayerRealSpace);
+                               double_layer_real_space(domain_.max_kept_pairs));
       xi_double = double_grid->parameters().xi;
       fold_radius[1] = pair_share_radius(box, double_grid->parameters().cutoff);
     }
@@ -113,7 +113,12 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   if (domain_.box) {
     ScopedTimer plans_timer(timings_.geometry);
     single_plan_ = std::make_unique<EwaldPlan>(single_grid, nodes_.x, folded_shares(Layer::single));
-    if (with_double_layer) double_plan_ = std::make_unique<EwaldPlan>(double_grid, nodes_.x, folded_shares(Layer::double_));
+    // Applied once when the single layer is computed here: nothing to keep.
+    single_plan_->keep_pairs_up_to(single_density_ ? 0 : domain_.max_kept_pairs);
+    if (with_double_layer) {
+      double_plan_ = std::make_unique<EwaldPlan>(double_grid, nodes_.x, folded_shares(Layer::double_));
+      double_plan_->keep_pairs_up_to(domain_.max_kept_pairs);
+    }
     // The plans hold the folded nodes now, as their pair shares.
     for (int c = 0; c < nc; ++c) {
       for (LayerCorrection* k : {self_single_[c].get(), self_double_[c].get(), near_[c].single.get(), near_[c].double_.get()})

@@ -12,6 +12,7 @@
 // corrections.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -40,11 +41,16 @@ struct CellLayersTimings {
 // 5 ns to read, so over a step's products about a fifth of computing them. The choice
 // then moves to a larger cutoff and a coarser grid (tube27: cell products 3.9 -> 3.0 s per
 // step), within the pairs a plan keeps.
-inline constexpr RealSpaceUse kDoubleLayerRealSpace{0.2, static_cast<double>(kMaxKeptPairs)};
+// Without kept coefficients (max_kept_pairs = 0: a memory budget that cannot hold them) every
+// product computes them, and the choice is the default one.
+inline RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs) {
+  return max_kept_pairs > 0 ? RealSpaceUse{0.2, static_cast<double>(max_kept_pairs)} : RealSpaceUse{};
+}
 
 struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
+  std::int64_t max_kept_pairs = kMaxKeptPairs;  // the Ewald plans' bound (ewald_plan.h)
 };
 
 class CellLayers {

@@ -27,7 +27,9 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     auto plan = [&](EwaldKernel kernel, double& xi) {
       auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows());
       xi = grid->parameters().xi;
-      return std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_);
+      auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_);
+      p->keep_pairs_up_to(domain.max_kept_pairs);
+      return p;
     };
     single_plan_ = plan(EwaldKernel::stokeslet, xi_single);
     if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double);
@@ -56,6 +58,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     Eigen::MatrixXd corrections = Eigen::MatrixXd::Zero(points_.rows(), 3);
     for (int c = 0; c < nc; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) corrections.row(near_[c].rows[k]) += near_single[c].row(k);
+    if (single_plan_) single_plan_->keep_pairs_up_to(0);  // one product: nothing to keep
     single_layer_ = regular_single_layer(*single_density_) + corrections;
     single_plan_.reset();
   }

@@ -17,7 +17,7 @@ double seconds_between(std::chrono::steady_clock::time_point a,
 }  // namespace
 
 std::vector<double>* EwaldPlan::kept(std::vector<double>& coefficients) const {
-  return neighbors().n_pairs() <= kMaxKeptPairs ? &coefficients : nullptr;
+  return neighbors().n_pairs() <= max_kept_pairs_ ? &coefficients : nullptr;
 }
 
 const NeighborList& EwaldPlan::neighbors() const {

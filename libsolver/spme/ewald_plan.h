@@ -69,6 +69,9 @@ class EwaldPlan {
   // The same for forces = map x, through `spreading` = smooth().sources().spreading_matrix(map).
   PointField smooth_single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x);
 
+  // Keep the pair coefficients only for lists of at most n pairs (default kMaxKeptPairs; 0:
+  // never), for a memory budget or a plan applied once.
+  void keep_pairs_up_to(std::int64_t n) { max_kept_pairs_ = n; }
   // Throws std::logic_error after release_real_space().
   const NeighborList& neighbors() const;
   // Frees the neighbour list, for a caller that has assembled the real-space part itself
@@ -92,6 +95,7 @@ class EwaldPlan {
   PairShares shares_;
   std::vector<double> single_coefficients_, double_coefficients_;
   bool double_products_ = false;  // whether double_layer has run (for report_memory)
+  std::int64_t max_kept_pairs_ = kMaxKeptPairs;
   EwaldTimings timings_;
 };
 

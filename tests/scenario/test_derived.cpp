@@ -68,17 +68,6 @@ TEST(CaseDerived, ReferenceCellOfOtherShapesIsMeasured) {
   EXPECT_EQ(reference_cell(CaseCells{}).area, 16.8);
 }
 
-TEST(CaseDerived, MemoryModelIsLinearInCellsAndWallNodes) {
-  const Case c = parse_case(
-      "[domain]\nbox = [6, 6, 10]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 3.5\n[cells]\n", "m.toml");
-  const MemoryEstimate m = memory_estimate(c, 1, 2068);
-  EXPECT_GT(m.cells, 0);
-  EXPECT_DOUBLE_EQ(memory_estimate(c, 10, 2068).cells, 10 * m.cells);
-  EXPECT_DOUBLE_EQ(m.wall, 200.0 * sizeof(double) * 2068);  // 200 doubles per wall node
-  EXPECT_EQ(m.ewald, 0);  // the Ewald grids are the solver's choice, added by rbcflow check
-  EXPECT_EQ(m.total(), m.cells + m.wall);
-}
-
 TEST(CaseDerived, FlowAxisFollowsVesselFlowOrForce) {
   EXPECT_EQ(flow_axis(tube_case(3, 10, "")), 2);
   EXPECT_EQ(flow_axis(parse_case("[domain]\nbox = [4, 4, 4]\nmean_velocity = [0, -2, 1]\n", "a.toml")), 1);

@@ -56,9 +56,8 @@ TEST(Scenario, LumenVolumeOfATubeAndOfTheConstrictionFromTheirMeshes) {
                    .lumen_volume);
 }
 
-TEST(Scenario, GmshMeshesTheTubeOfTheMemoryModel) {
-  // gmsh meshes a D = 3.5, length 10 tube at h = 0.25 into 4,136 triangles, 2,068 nodes (the
-  // count the memory model of rbcflow check is calibrated with).
+TEST(Scenario, GmshMeshesATubeIntoTheNodeCountTheTestsAssume) {
+  // gmsh meshes a D = 3.5, length 10 tube at h = 0.25 into 4,136 triangles, 2,068 nodes.
   const Scenario s = prepare_scenario(
       parse_case("[domain]\nbox = [6, 6, 10]\nmean_velocity = [0, 0, 1]\n[vessel]\ndiameter = 3.5\n", "m.toml"));
   EXPECT_NEAR(s.vessel->surface.num_points(), 2068, 0.05 * 2068);
@@ -128,4 +127,36 @@ TEST(Scenario, ExpertEwaldOverridesAreRefusedByName) {
   EXPECT_NE(refusal(kTube + "[ewald]\nalpha = 2.0\n").find("s.toml:7: ewald.alpha: rbcflow does not take expert Ewald"),
             std::string::npos)
       << refusal(kTube + "[ewald]\nalpha = 2.0\n");
+}
+
+// The memory budget (memory_budget.h): the estimate grows with the cells; a budget that holds
+// everything but the kept Ewald pair coefficients drops them (and the double layer's Ewald
+// choice becomes the one without them); a smaller one is refused naming solver.memory_gib.
+TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
+  const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
+                           "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = ";
+  const Scenario few = prepare_scenario(parse_case(tube + "0.1\n", "m.toml"));
+  const Scenario more = prepare_scenario(parse_case(tube + "0.3\n", "m.toml"));
+  ASSERT_LT(few.cells.size(), more.cells.size());
+  EXPECT_LT(few.memory.total(), more.memory.total());
+  EXPECT_TRUE(more.keeps_pair_coefficients);
+  ASSERT_GT(more.memory.kept_coefficients, 0);
+  EXPECT_EQ(more.memory.parts.size(), 6u);  // geometry, singular, nearly singular, Ewald, wall, coupling
+
+  constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+  const double without = more.memory.total() - 1.3 * more.memory.kept_coefficients;
+  const double between = 0.5 * (without + more.memory.total()) / gib;
+  const Scenario tight = prepare_scenario(parse_case(tube + "0.3\n[solver]\nmemory_gib = " + std::to_string(between) + "\n", "m.toml"));
+  EXPECT_FALSE(tight.keeps_pair_coefficients);
+  EXPECT_EQ(tight.options.domain.max_kept_pairs, 0);
+  const EwaldSum& dl = tight.ewald[1];
+  ASSERT_EQ(dl.what, "cells, double layer");
+  const EwaldChoice unkept = choose_ewald_parameters(EwaldKernel::stresslet, 1e-6, PeriodicBox(Eigen::Vector3d(6.6, 6.6, 8)),
+                                                     dl.nodes, dl.nodes, RealSpaceUse{});
+  EXPECT_EQ(dl.choice.parameters.grid, unkept.parameters.grid);
+  EXPECT_EQ(dl.choice.parameters.cutoff, unkept.parameters.cutoff);
+
+  const std::string e = refusal(tube + "0.3\n[solver]\nmemory_gib = " + std::to_string(0.5 * without / gib) + "\n");
+  EXPECT_NE(e.find("solver.memory_gib: the run needs about"), std::string::npos) << e;
+  EXPECT_NE(e.find("use fewer cells"), std::string::npos) << e;
 }

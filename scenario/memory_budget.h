@@ -1,0 +1,51 @@
+#pragma once
+// What a run will hold at the peak of a time step, estimated from the prepared scenario before
+// anything is built, by part, and the budget it must fit in ([solver] memory_gib, or the
+// machine's physical memory). The model is the bytes of each structure a step keeps (the
+// breakdown `bench_step` prints, libsolver's MemoryReport), per unit that sets its size:
+//   cells' geometry      2 fields x (2N+1) x 4N Hermite nodes x 12 doubles + 7 doubles per node
+//   singular (self)      double layer: P Q float kernels of 6 + 2.3 P^2 bytes of node entries
+//   nearly singular      double layer: 2 H P near targets per cell (at least 0.05 P), each
+//                        Q (40 + 24) bytes + 2.25 kB of node entries
+//   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
+//                        (the cells fill the lumen, not the box), 6 bytes each in the list and
+//                        16 kept; 8.3 P bytes of pair shares and 250 bytes of stencils per node;
+//                        one product's work arrays, 120 bytes per grid point
+//   wall                 72.5 kB per wall node (operator, near field, preconditioner, recycled space)
+//   cells <-> wall       21.5 kB per wall node and 5.2 kB per cell node
+//   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program
+// with P = 2N^2 nodes per cell, Q patch points per target, H the tube hematocrit. The single
+// layer holds nothing past its build (cell_layers.h). Calibrated at 303b38c on bench_step's
+// tube27 (N = 16, lambda = 5, Ewald 1e-6: predicted and measured peak in docs/performance.md);
+// the parts of other cases scale as above.
+#include <string>
+#include <vector>
+
+#include "io/case.h"
+
+namespace rbcflow {
+
+struct Scenario;
+
+struct MemoryEstimate {
+  struct Part {
+    std::string name;
+    double bytes = 0;
+  };
+  std::vector<Part> parts;
+  double kept_coefficients = 0;  // of the cells' Ewald part: what not keeping them saves
+  double total() const;          // the peak: 1.3 x the parts + the program
+};
+
+MemoryEstimate estimate_memory(const Scenario& s);
+
+// Bytes: [solver] memory_gib, or the machine's physical memory when it is not set.
+double memory_budget(const Case& c);
+
+// Fits the scenario's estimate (s.memory) into the budget (s.memory_budget): keeps the
+// Ewald pair coefficients when everything fits with them, drops them (products recompute them:
+// slower, no less accurate) when only then it fits, and otherwise throws CaseError naming
+// solver.memory_gib with the estimate and what to change.
+void apply_memory_budget(Scenario& s);
+
+}  // namespace rbcflow
