@@ -7,7 +7,10 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "geometry/surface/surface_projection.h"
 #include "libsolver/spme/ewald_parameters.h"
@@ -174,6 +177,23 @@ TEST(SingularQuadrature, SphereInPeriodicArrayMatchesHasimoto) {
 
 namespace {
 
+// Targets `offset` off the surface along its normal at the parameters (theta, phi) given, with
+// their projections onto it.
+std::vector<QuadratureTarget> off_surface_targets(const SHSurface& s, double offset,
+                                                  std::initializer_list<std::pair<double, double>> at) {
+  std::vector<QuadratureTarget> near;
+  for (auto [t, p] : at) {
+    const Eigen::Vector3d xs = sh_evaluate(s.coeffs(), t, p).transpose();
+    const Eigen::Vector3d a1 = sh_evaluate(s.coeffs(), t, p, 1, 0).transpose();
+    const Eigen::Vector3d a2 = sh_evaluate(s.coeffs(), t, p, 0, 1).transpose();
+    const Eigen::Vector3d x0 = xs + offset * a1.cross(a2).normalized();
+    const SurfaceProjection proj = project_onto_surface(s.coeffs(), x0, t, p);
+    EXPECT_TRUE(proj.converged);
+    near.push_back({x0, proj.theta, proj.phi, proj.distance, -1});
+  }
+  return near;
+}
+
 // Single and double layers of `cell` in `box` at its nodes and at `near` points (targets with
 // their projections), SPME + real-space sums + corrections (Ewald tolerance 1e-8). fold: the
 // corrections leave their patch nodes within the real-space cutoff to the real-space sums
@@ -240,16 +260,7 @@ TEST(LayerCorrection, FoldedPatchNodesGiveTheSameLayers) {
     SHSurface s = make_biconcave(N);
     s.translate(0.5 * side);
     auto cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), CellGrids::make(N, N));
-    std::vector<QuadratureTarget> near;
-    for (auto [t, p] : {std::pair{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}}) {
-      const Eigen::Vector3d xs = sh_evaluate(s.coeffs(), t, p).transpose();
-      const Eigen::Vector3d a1 = sh_evaluate(s.coeffs(), t, p, 1, 0).transpose();
-      const Eigen::Vector3d a2 = sh_evaluate(s.coeffs(), t, p, 0, 1).transpose();
-      const Eigen::Vector3d x0 = xs + 0.1 * a1.cross(a2).normalized();
-      const SurfaceProjection proj = project_onto_surface(s.coeffs(), x0, t, p);
-      ASSERT_TRUE(proj.converged);
-      near.push_back({x0, proj.theta, proj.phi, proj.distance, -1});
-    }
+    const std::vector<QuadratureTarget> near = off_surface_targets(s, 0.1, {{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}});
     std::size_t none = 0;
     const auto [sl, dl] = periodic_layers(cell, box, near, false, none);
     const auto [sl_folded, dl_folded] = periodic_layers(cell, box, near, true, folded_in[b]);
@@ -277,16 +288,7 @@ TEST(LayerCorrection, CompactTablesChangeTheCorrectionsBelowTheSolverTolerance) 
   const auto grids = CellGrids::make(N, 3 * N);
   const auto compact_cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), grids);
   const auto full_cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), grids, full);
-  std::vector<QuadratureTarget> near;
-  for (auto [t, p] : {std::pair{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}, {2.9, 1.0}}) {
-    const Eigen::Vector3d xs = sh_evaluate(s.coeffs(), t, p).transpose();
-    const Eigen::Vector3d a1 = sh_evaluate(s.coeffs(), t, p, 1, 0).transpose();
-    const Eigen::Vector3d a2 = sh_evaluate(s.coeffs(), t, p, 0, 1).transpose();
-    const Eigen::Vector3d x0 = xs + 0.05 * a1.cross(a2).normalized();
-    const SurfaceProjection proj = project_onto_surface(s.coeffs(), x0, t, p);
-    ASSERT_TRUE(proj.converged);
-    near.push_back({x0, proj.theta, proj.phi, proj.distance, -1});
-  }
+  const std::vector<QuadratureTarget> near = off_surface_targets(s, 0.05, {{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}, {2.9, 1.0}});
   const SourceNodes& nodes = compact_cell->nodes();
   Eigen::MatrixXd density(nodes.size(), 3);
   for (int i = 0; i < nodes.size(); ++i) {
