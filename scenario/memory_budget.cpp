@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "libsolver/quadrature/singular_quadrature.h"
@@ -76,7 +77,9 @@ MemoryEstimate estimate_memory(const Scenario& s) {
 
 double memory_budget(const Case& c) {
   if (c.solver.memory_gib) return *c.solver.memory_gib * kGiB;
-  return static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::numeric_limits<double>::infinity();  // not known: no budget
+  return static_cast<double>(pages) * static_cast<double>(page);
 }
 
 void apply_memory_budget(Scenario& s) {

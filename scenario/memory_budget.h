@@ -39,7 +39,8 @@ struct MemoryEstimate {
 
 MemoryEstimate estimate_memory(const Scenario& s);
 
-// Bytes: [solver] memory_gib, or the machine's physical memory when it is not set.
+// Bytes: [solver] memory_gib, or the machine's physical memory when it is not set (infinite
+// where the system does not say).
 double memory_budget(const Case& c);
 
 // Fits the scenario's estimate (s.memory) into the budget (s.memory_budget): keeps the
