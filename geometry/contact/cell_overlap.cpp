@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -52,26 +51,29 @@ CellOverlap::CellOverlap(const std::vector<SHSurface>& bodies, int check_order, 
   for (const SHSurface& s : bodies) bodies_.emplace_back(s, check_order);
 }
 
-// Every vertex of b (moved by `shift`) outside a and at least gap from a's triangles. The
-// vertices are checked by all threads (placement runs thousands of these tests one after
-// another); the first failure stops the others' remaining checks.
+// Every vertex of b (moved by `shift`) outside a and at least gap from a's triangles. A vertex
+// found outside at distance d leaves a ball of radius d free of a's surface, so a later vertex
+// within d - gap of it is outside and at least gap away too, with no query: placement runs
+// thousands of these tests one after another, and most vertices are far from contact. Serial:
+// a test is too short to share among threads (their start-up cost more than the test on a
+// loaded machine); callers run independent tests side by side instead.
 bool CellOverlap::vertices_apart(const CellPose& a, const CellPose& b, const Eigen::Vector3d& shift) const {
   const Body& body_a = bodies_[a.body];
   const TriangleMesh& mesh_b = bodies_[b.body].mesh;
   const Eigen::Matrix3d to_a = a.rotation.transpose() / a.scale;
-  const double reach = body_a.radius + gap_ / a.scale;
-  std::atomic<bool> apart{true};
-#pragma omp parallel for schedule(static)
+  const double reach = body_a.radius + gap_ / a.scale, gap = gap_ / a.scale;  // in a's unscaled body frame
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  double free_radius = -1.0;  // about anchor, beyond gap (none yet)
   for (int v = 0; v < mesh_b.num_points(); ++v) {
-    if (!apart.load(std::memory_order_relaxed)) continue;
     const Eigen::Vector3d x = b.rotation * (b.scale * mesh_b.points.row(v).transpose()) + b.position + shift;
-    const Eigen::Vector3d y = to_a * (x - a.position);  // in a's unscaled body frame
-    if (y.norm() > reach) continue;
+    const Eigen::Vector3d y = to_a * (x - a.position);
+    if (y.norm() > reach || (y - anchor).norm() <= free_radius) continue;
     const TriangleAabbTree::ClosestPoint c = body_a.tree.closest_point(y);
-    if (c.distance * a.scale < gap_ || (y - c.point).dot(body_a.normals.row(c.triangle).transpose()) < 0)
-      apart.store(false, std::memory_order_relaxed);
+    if (c.distance < gap || (y - c.point).dot(body_a.normals.row(c.triangle).transpose()) < 0) return false;
+    anchor = y;
+    free_radius = c.distance - gap;
   }
-  return apart;
+  return true;
 }
 
 bool CellOverlap::apart(const CellPose& a, const CellPose& b, bool same) const {
@@ -97,14 +99,19 @@ bool CellOverlap::inside_wall(const CellPose& a) const {
   const double centre = wall_->closest(a.position).signed_distance;
   if (centre >= bodies_[a.body].radius * a.scale + gap_) return true;
   if (centre <= 0) return false;
-  std::atomic<bool> inside{true};  // threads as in vertices_apart
-#pragma omp parallel for schedule(static)
+  // As in vertices_apart: a point at signed distance s inside the lumen leaves a ball of radius s
+  // free of the wall; vertices within s - gap of the last one queried (first, the centre) pass.
+  Eigen::Vector3d anchor = a.position;
+  double free_radius = centre - gap_;
   for (int v = 0; v < mesh.num_points(); ++v) {
-    if (!inside.load(std::memory_order_relaxed)) continue;
     const Eigen::Vector3d x = a.rotation * (a.scale * mesh.points.row(v).transpose()) + a.position;
-    if (wall_->closest(x).signed_distance < gap_) inside.store(false, std::memory_order_relaxed);
+    if ((x - anchor).norm() <= free_radius) continue;
+    const double s = wall_->closest(x).signed_distance;
+    if (s < gap_) return false;
+    anchor = x;
+    free_radius = s - gap_;
   }
-  return inside;
+  return true;
 }
 
 }  // namespace rbcflow
