@@ -13,6 +13,7 @@
 #include "io/output_dir.h"
 #include "libsolver/operators/cell_layers.h"
 #include "scenario/derived.h"
+#include "scenario/physical_units.h"
 #include "scenario/scenario.h"
 
 namespace rbcflow::cli {
@@ -35,9 +36,15 @@ void print_domain(const Case& c) {
     if (d.pressure_gradient) {
       std::printf("flow:    mean pressure gradient <grad p> = %s\n", vec(*d.pressure_gradient).c_str());
     }
-    if (d.tube_velocity) {
-      std::printf("flow:    tube mean velocity %g along the vessel axis (<u> from a cell-free wall solve at "
-                  "the start of the run)\n", *d.tube_velocity);
+    if (const std::optional<double> U = held_tube_velocity(c)) {
+      const PhysicalUnits si(c.units);
+      const double D = c.vessel->diameter, rate = *U / D;
+      std::printf("flow:    tube mean velocity U = %.4g (%.3g mm/s), pseudo-shear rate U/D = %.4g (%.3g 1/s), held "
+                  "every step by <u>\n", *U, si.mm_per_s(*U), rate, si.per_second(rate));
+      // Poiseuille without cells: wall shear stress 8 mu U / D, pressure gradient 32 mu U / D^2.
+      std::printf("         without cells: wall shear stress %.4g (%.3g Pa), pressure gradient %.4g (%.3g Pa/um, "
+                  "%.3g mmHg/mm)\n", 8 * rate, si.pascals(8 * rate), 32 * rate / D, si.pa_per_um(32 * rate / D),
+                  si.mmhg_per_mm(32 * rate / D));
     }
   } else {
     std::printf("domain:  free (no Ewald sums)\n");
@@ -46,6 +53,14 @@ void print_domain(const Case& c) {
     std::printf("\n");
   }
   std::printf("         viscosity ratio lambda = %g\n", d.viscosity_ratio);
+}
+
+void print_units(const Case& c) {
+  const PhysicalUnits si(c.units);
+  std::printf("units:   a = %g um, 1/k* = %.4g ms, plasma %g mPa s: velocity %.4g mm/s, stress %.4g Pa, "
+              "pressure gradient %.4g Pa/um ([units])\n",
+              c.units.length_um, si.milliseconds(1), c.units.plasma_viscosity_mpas, si.mm_per_s(1), si.pascals(1),
+              si.pa_per_um(1));
 }
 
 void print_vessel(const Scenario& s) {
@@ -59,7 +74,7 @@ void print_vessel(const Scenario& s) {
   if (v.kind == VesselKind::file) {
     std::printf(", %s (scale %g)", v.path.string().c_str(), v.scale);
   } else {
-    std::printf(", D = %g", v.diameter);
+    std::printf(", D = %g (%.3g um)", v.diameter, PhysicalUnits(c.units).micrometres(v.diameter));
   }
   if (v.kind == VesselKind::constriction) {
     std::printf(", neck d = %g at %g (depth %g, width %g)", v.diameter - v.depth, v.center, v.depth, v.width);
@@ -100,6 +115,12 @@ void print_cells(const Scenario& s) {
   std::printf("         membrane %s: Es %g, ", to_string(k.membrane.law).c_str(), k.membrane.shear_modulus);
   if (k.membrane.law != MembraneLawKind::neo_hookean) std::printf("Ed %g, ", k.membrane.dilatation_modulus);
   std::printf("Eb %g\n", k.membrane.bending_modulus);
+  const PhysicalUnits si(c.units);
+  std::printf("         (Es %.3g N/m, Eb %.3g N m", si.newtons_per_m(k.membrane.shear_modulus),
+              si.newton_metres(k.membrane.bending_modulus));
+  if (k.membrane.law != MembraneLawKind::neo_hookean)
+    std::printf(", Ed %.3g N/m", si.newtons_per_m(k.membrane.dilatation_modulus));
+  std::printf(")\n");
   const ReferenceCell ref = reference_cell(k);
   std::printf("         reference cell: area %.4g, volume %.4g\n", ref.area, ref.volume);
 }
@@ -116,7 +137,8 @@ void print_time(const Scenario& s) {
   }
   std::printf("         dt %.4g", dt);
   if (!c.time.dt) std::printf(" (auto: %g x limit)", c.time.dt_safety);
-  std::printf(", %s, end %g: %ld steps\n", to_string(c.time.scheme).c_str(), c.time.end, s.steps);
+  std::printf(", %s, end %g (%.4g ms): %ld steps\n", to_string(c.time.scheme).c_str(), c.time.end,
+              PhysicalUnits(c.units).milliseconds(c.time.end), s.steps);
   std::printf("         collision threshold %g, volume constraint %s\n", c.time.collision_threshold,
               c.time.volume_constraint ? "on" : "off");
 }
@@ -196,6 +218,7 @@ int run_check(Args& args) {
 
   std::printf("case:    %s: \"%s\"\n", file.c_str(), c.title.c_str());
   print_domain(c);
+  print_units(c);
   print_vessel(s);
   print_cells(s);
   print_time(s);

@@ -43,9 +43,10 @@ struct CaseDomain {
   // for <u>, or the tube velocity.
   std::optional<Vec3> mean_velocity;
   std::optional<Vec3> pressure_gradient;
-  // Or the mean velocity inside a tube or constriction, along its axis: <u> is set at the
-  // start from a cell-free wall solve (libsolver/stepper/tube_drive.h).
+  // Or the mean velocity U inside a tube or constriction, along its axis, held every step
+  // (libsolver/stepper/tube_drive.h); or U / D in 1/s (the pseudo-shear rate, physical: [units]).
   std::optional<double> tube_velocity;
+  std::optional<double> pseudo_shear_rate;
   double viscosity_ratio = 5.0;     // lambda
   BackgroundFlow background_flow;   // free only
   bool operator==(const CaseDomain&) const = default;
@@ -150,6 +151,15 @@ struct CaseOutput {
   bool operator==(const CaseOutput&) const = default;
 };
 
+// The physical scales of section 6, for reports in physical units and for inputs given in
+// them (domain.pseudo_shear_rate); the solver works in the non-dimensional values.
+struct CaseUnits {
+  double length_um = 2.82;             // a*, the equivalent cell radius
+  double rate_per_s = 100.0;           // k*: one time unit is 1 / k*
+  double plasma_viscosity_mpas = 1.2;  // mu*, the suspending fluid's viscosity
+  bool operator==(const CaseUnits&) const = default;
+};
+
 // Where each key came from, for messages that name the file and line.
 struct CaseSource {
   std::filesystem::path file;
@@ -167,6 +177,7 @@ struct Case {
   CaseSolver solver;
   CaseTime time;
   CaseOutput output;
+  CaseUnits units;
   CaseSource source;  // not part of the comparison
 
   bool operator==(const Case& other) const;

@@ -277,19 +277,21 @@ CaseDomain read_domain(Table& top) {
     d.mean_velocity = t->vec3("mean_velocity", any_finite());
     d.pressure_gradient = t->vec3("pressure_gradient", any_finite());
     d.tube_velocity = t->optional_real("tube_velocity", any_finite());
-    if (d.mean_velocity && d.pressure_gradient) {
-      t->fail("pressure_gradient", "give mean_velocity or pressure_gradient, not both");
-    }
-    if (d.tube_velocity && (d.mean_velocity || d.pressure_gradient)) {
-      t->fail("tube_velocity", std::string("give tube_velocity or ") +
-                                   (d.mean_velocity ? "mean_velocity" : "pressure_gradient") + ", not both");
-    }
-    if (!d.mean_velocity && !d.pressure_gradient && !d.tube_velocity) {
-      t->fail_table("a periodic domain needs mean_velocity, pressure_gradient or tube_velocity "
+    d.pseudo_shear_rate = t->optional_real("pseudo_shear_rate", open_closed(0, 1e6));
+    // One drive: the first given of these, in this order, names the conflict.
+    std::vector<std::string> given;
+    if (d.mean_velocity) given.push_back("mean_velocity");
+    if (d.pressure_gradient) given.push_back("pressure_gradient");
+    if (d.tube_velocity) given.push_back("tube_velocity");
+    if (d.pseudo_shear_rate) given.push_back("pseudo_shear_rate");
+    if (given.size() > 1) t->fail(given[1], "give " + given[0] + " or " + given[1] + ", not both");
+    if (given.empty()) {
+      t->fail_table("a periodic domain needs mean_velocity, pressure_gradient, tube_velocity or pseudo_shear_rate "
                     "(mean_velocity = [0, 0, 0] for no imposed flow)");
     }
   } else {
-    t->reject({"box", "mean_velocity", "pressure_gradient", "tube_velocity"}, "kind = \"periodic\"");
+    t->reject({"box", "mean_velocity", "pressure_gradient", "tube_velocity", "pseudo_shear_rate"},
+              "kind = \"periodic\"");
     if (auto f = t->table("background_flow")) {
       d.background_flow.kind = f->choice<FlowKind>(
           "kind", FlowKind::none,
@@ -509,6 +511,17 @@ CaseSolver read_solver(Table& top) {
   return s;
 }
 
+CaseUnits read_units(Table& top) {
+  CaseUnits u;
+  auto t = top.table("units");
+  if (!t) return u;
+  u.length_um = t->real("length_um", u.length_um, open_closed(0, 1e6));
+  u.rate_per_s = t->real("rate_per_s", u.rate_per_s, open_closed(0, 1e9));
+  u.plasma_viscosity_mpas = t->real("plasma_viscosity_mpas", u.plasma_viscosity_mpas, open_closed(0, 1e6));
+  t->finish();
+  return u;
+}
+
 CaseTime read_time(Table& top) {
   CaseTime tm;
   auto t = top.table("time");
@@ -575,17 +588,20 @@ Case read_root(const toml::value& root, const fs::path& file) {
   c.title = top.optional_text("title").value_or(file.stem().string());
   c.domain = read_domain(top);
   c.vessel = read_vessel(top, c.domain, file.parent_path());
-  if (c.domain.tube_velocity &&
-      !(c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction))) {
-    ctx.fail(c.source.lines.at("domain.tube_velocity"), "domain.tube_velocity",
-             "needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in its straight section "
-             "sets <u>); use mean_velocity or pressure_gradient otherwise");
+  for (const auto& [key, given] : {std::pair{"tube_velocity", c.domain.tube_velocity.has_value()},
+                                   std::pair{"pseudo_shear_rate", c.domain.pseudo_shear_rate.has_value()}}) {
+    if (given && !(c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction))) {
+      ctx.fail(c.source.lines.at(std::string("domain.") + key), std::string("domain.") + key,
+               "needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in its straight section "
+               "sets <u>); use mean_velocity or pressure_gradient otherwise");
+    }
   }
   c.cells = read_cells(top, c.domain, c.vessel.has_value());
   c.ewald = read_ewald(top, c.domain);
   c.solver = read_solver(top);
   c.time = read_time(top);
   c.output = read_output(top, file);
+  c.units = read_units(top);
   top.finish();
   return c;
 }

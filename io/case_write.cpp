@@ -81,6 +81,7 @@ void write_domain(Writer& w, const CaseDomain& d) {
     if (d.mean_velocity) w.key("mean_velocity", vec(*d.mean_velocity));
     if (d.pressure_gradient) w.key("pressure_gradient", vec(*d.pressure_gradient));
     if (d.tube_velocity) w.key("tube_velocity", *d.tube_velocity);
+    if (d.pseudo_shear_rate) w.key("pseudo_shear_rate", *d.pseudo_shear_rate);
   } else {
     std::string flow = "{ kind = ";
     flow.append(quoted(to_string(d.background_flow.kind)));
@@ -203,7 +204,7 @@ int CaseSource::line(const std::string& key) const {
 
 bool Case::operator==(const Case& o) const {
   return title == o.title && domain == o.domain && vessel == o.vessel && cells == o.cells &&
-         ewald == o.ewald && solver == o.solver && time == o.time && output == o.output;
+         ewald == o.ewald && solver == o.solver && time == o.time && output == o.output && units == o.units;
 }
 
 CaseError case_error(const Case& c, const std::string& key, const std::string& message) {
@@ -228,6 +229,10 @@ std::string case_toml(const Case& c) {
   if (c.solver.memory_gib) w.key("memory_gib", *c.solver.memory_gib);
   write_time(w, c.time);
   write_output(w, c.output);
+  w.table("units");
+  w.key("length_um", c.units.length_um);
+  w.key("rate_per_s", c.units.rate_per_s);
+  w.key("plasma_viscosity_mpas", c.units.plasma_viscosity_mpas);
   return w.str();
 }
 

@@ -90,7 +90,8 @@ const std::vector<std::string>& diagnostics_columns() {
       "step", "time", "dt", "mean_velocity_x", "mean_velocity_y", "mean_velocity_z",
       "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z", "effective_viscosity",
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
-      "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement"};
+      "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement",
+      "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain"};
   return columns;
 }
 
@@ -135,6 +136,8 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(csv_number(r.wall_residual)).add(csv_number(r.seconds));
   row.add(csv_integer(r.collision_pairs)).add(csv_integer(r.wall_contacts));
   row.add(csv_number(r.collision_displacement));
+  row.add(csv_number(r.tube_velocity)).add(csv_number(r.pseudo_shear_rate_per_s));
+  row.add(csv_number(r.discharge_hematocrit)).add(csv_number(r.max_area_strain));
   csv_.write(row.fields);
 }
 

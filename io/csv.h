@@ -31,6 +31,13 @@ struct DiagnosticsRow {
   std::optional<int> collision_pairs;             // cell pairs closer than h_s, periodic images included
   std::optional<int> wall_contacts;               // cells closer than h_s to the wall
   std::optional<double> collision_displacement;   // largest push of a grid point
+  // A tube or constriction: its mean velocity U, U / D in 1/s ([units]), the discharge
+  // hematocrit (cells' volume flux over the tube's, with cells); with cells, the largest local
+  // area strain |J_S - 1| of the membranes.
+  std::optional<double> tube_velocity;
+  std::optional<double> pseudo_shear_rate_per_s;
+  std::optional<double> discharge_hematocrit;
+  std::optional<double> max_area_strain;
 };
 
 struct CellRow {

@@ -17,6 +17,7 @@
 #include "io/xdmf_writer.h"
 #include "scenario/checkpoint.h"
 #include "scenario/derived.h"
+#include "scenario/physical_units.h"
 #include "scenario/run_output.h"
 #include "scenario/scenario.h"
 
@@ -150,10 +151,11 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
                 stepper.cells().size(), stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", r.first,
                 r.last, c.output.dir.c_str());
     if (r.scenario.placement_note) std::printf("%s\n", r.scenario.placement_note->c_str());
-    if (c.domain.tube_velocity) {
+    if (const std::optional<double> U = r.scenario.options.tube_velocity) {
       const Eigen::Vector3d& u = stepper.mean_velocity();
-      std::printf("tube velocity %g: <u> = [%.6g, %.6g, %.6g] (cell-free wall solve)\n", *c.domain.tube_velocity,
-                  u.x(), u.y(), u.z());
+      const PhysicalUnits si(c.units);
+      std::printf("tube velocity %.4g (%.3g mm/s, U/D %.3g 1/s), held every step; without cells <u> = [%.6g, %.6g, "
+                  "%.6g]\n", *U, si.mm_per_s(*U), si.per_second(*U / c.vessel->diameter), u.x(), u.y(), u.z());
     }
     std::fflush(stdout);
   }

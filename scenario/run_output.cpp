@@ -8,6 +8,7 @@
 #include "io/xdmf_writer.h"
 #include "libsolver/wall/tube_flow.h"
 #include "scenario/derived.h"
+#include "scenario/physical_units.h"
 
 namespace rbcflow {
 
@@ -115,6 +116,12 @@ DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, 
     }
   }
   if (!stepper.cells().empty()) row.tube_hematocrit = s.tube_hematocrit;
+  if (r.tube_velocity) {
+    row.tube_velocity = r.tube_velocity;
+    row.pseudo_shear_rate_per_s = PhysicalUnits(c.units).per_second(*r.tube_velocity / c.vessel->diameter);
+  }
+  row.discharge_hematocrit = r.discharge_hematocrit;
+  if (!stepper.cells().empty()) row.max_area_strain = r.max_area_strain;
   row.max_volume_error = r.max_volume_error;
   row.max_area_error = r.max_area_error;
   row.gmres_cells = r.gmres_iterations;

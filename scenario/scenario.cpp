@@ -12,6 +12,7 @@
 #include "libsolver/operators/cell_layers.h"
 #include "scenario/cell_layout.h"
 #include "scenario/derived.h"
+#include "scenario/physical_units.h"
 #include "scenario/vessel.h"
 
 namespace rbcflow {
@@ -33,15 +34,17 @@ std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background(const Backgrou
 
 // The tube velocity is measured on the vessel's axis (the box centre in the cross-section)
 // where it is straight: anywhere in a tube, half a period from a constriction's neck.
-TubeDrive tube_drive(const Case& c) {
-  const CaseVessel& v = *c.vessel;  // the parser allows tube_velocity with a tube or constriction only
-  TubeDrive d;
-  d.velocity = *c.domain.tube_velocity;
-  d.axis = v.axis;
-  d.axis_point = 0.5 * to_eigen(c.domain.box);
+std::optional<TubeSection> tube_section(const Case& c) {
+  if (!c.vessel || c.domain.kind != DomainKind::periodic) return std::nullopt;
+  const CaseVessel& v = *c.vessel;
+  if (v.kind != VesselKind::tube && v.kind != VesselKind::constriction) return std::nullopt;
+  TubeSection t;
+  t.axis = v.axis;
+  t.radius = 0.5 * v.diameter;
+  t.axis_point = 0.5 * to_eigen(c.domain.box);
   const double length = c.domain.box[v.axis];
-  d.axis_point[v.axis] = v.kind == VesselKind::constriction ? std::fmod(v.center + 0.5 * length, length) : 0.0;
-  return d;
+  t.axis_point[v.axis] = v.kind == VesselKind::constriction ? std::fmod(v.center + 0.5 * length, length) : 0.0;
+  return t;
 }
 
 // The solver chooses alpha, cutoff, grid and spline order for each of its sums from the
@@ -73,7 +76,8 @@ CellStepperOptions solver_options(const Case& c) {
     o.domain.box = PeriodicBox(to_eigen(c.domain.box));
     if (c.domain.mean_velocity) o.mean_velocity = to_eigen(*c.domain.mean_velocity);
     if (c.domain.pressure_gradient) o.pressure_gradient = to_eigen(*c.domain.pressure_gradient);
-    if (c.domain.tube_velocity) o.tube_drive = tube_drive(c);
+    o.tube = tube_section(c);
+    o.tube_velocity = held_tube_velocity(c);
   } else {
     o.background = background(c.domain.background_flow);
   }

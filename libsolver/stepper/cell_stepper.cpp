@@ -9,6 +9,7 @@
 #include <string>
 
 #include "libsolver/operators/cell_layers_at_points.h"
+#include "libsolver/stepper/cell_flux.h"
 
 namespace rbcflow {
 
@@ -36,16 +37,21 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
     if (options_.collision_threshold > 0) wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
-    if (const auto& d = options_.tube_drive) {
-      if (options_.pressure_gradient) {
-        throw std::invalid_argument("CellStepper: give a tube velocity or a pressure gradient, not both");
+    if (options_.tube_velocity && !options_.tube) {
+      throw std::invalid_argument("CellStepper: a tube velocity needs the tube's section");
+    }
+    if (options_.tube_velocity && options_.pressure_gradient) {
+      throw std::invalid_argument("CellStepper: give a tube velocity or a pressure gradient, not both");
+    }
+    if (options_.tube) {
+      tube_meter_.emplace(*wall_, *options_.tube);
+      if (options_.tube_velocity) {
+        options_.mean_velocity = Eigen::Vector3d::Unit(options_.tube->axis) * (*options_.tube_velocity / tube_meter_->ratio());
       }
-      const double ratio = tube_velocity_per_mean_velocity(*wall_, d->axis_point, d->axis);
-      options_.mean_velocity = Eigen::Vector3d::Unit(d->axis) * (d->velocity / ratio);
     }
   } else if (options_.pressure_gradient) {
     throw std::invalid_argument("CellStepper: a prescribed pressure gradient needs a vessel wall to resist it");
-  } else if (options_.tube_drive) {
+  } else if (options_.tube || options_.tube_velocity) {
     throw std::invalid_argument("CellStepper: a tube velocity needs a vessel wall");
   }
   for (const Cell& c : cells_) {
@@ -147,6 +153,13 @@ FlowSolution CellStepper::solve() const {
       w = wall_->solve(v, {});
       s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient, w.force);
       w.force += wall_->force_for_mean_velocity(s.mean_velocity);
+    } else if (options_.tube_velocity) {
+      // The guess's <u> part lies in the recycled space of the unit solves (tube_drive.h).
+      w = wall_->solve(v, guess);
+      const int a = options_.tube->axis;
+      const double at_rest = wall_->pressure_gradient(w.force)[a];
+      s.mean_velocity = Eigen::Vector3d::Unit(a) * tube_meter_->mean_velocity_for(*options_.tube_velocity, at_rest);
+      w.force += wall_->force_for_mean_velocity(s.mean_velocity);
     } else {
       w = wall_->solve(v.rowwise() + s.mean_velocity.transpose(), guess);
     }
@@ -155,6 +168,10 @@ FlowSolution CellStepper::solve() const {
     s.gmres_wall += w.gmres.iterations;
     s.wall_residual = w.gmres.relative_residual;
     s.pressure_gradient = wall_->pressure_gradient(w.force);
+    if (tube_meter_) {
+      const int a = options_.tube->axis;
+      s.tube_velocity = tube_meter_->tube_velocity(s.mean_velocity[a], s.pressure_gradient[a]);
+    }
   };
   // (10): the cell velocity for the wall force just found. The wall operator at the cell nodes
   // is built once for all the start sweeps.
@@ -271,6 +288,15 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   }
 }
 
+double CellStepper::discharge_hematocrit(const FlowSolution& s) const {
+  const int a = options_.tube->axis;
+  std::vector<SHSurface> shapes;
+  for (const Cell& c : cells_) shapes.push_back(c.shape);
+  const double radius = options_.tube->radius;
+  const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
+  return cells_volume_flux(shapes, s.velocity, *grids_->n_grid, a) / (options_.domain.box->lengths()[a] * tube_flux);
+}
+
 StepReport CellStepper::advance(const FlowSolution& s) {
   StepReport report;
   report.gmres_iterations = s.gmres_cells;
@@ -279,6 +305,10 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.wall_residual = s.wall_residual;
   report.mean_velocity = s.mean_velocity;
   report.pressure_gradient = s.pressure_gradient;
+  for (const MembraneState& m : s.membrane)
+    report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
+  report.tube_velocity = s.tube_velocity;
+  if (s.tube_velocity && !cells_.empty()) report.discharge_hematocrit = discharge_hematocrit(s);
   if (!cells_.empty()) move_cells(s, report);
   state_.oldest_velocity = std::move(state_.older_velocity);
   state_.older_velocity = std::move(state_.previous_velocity);

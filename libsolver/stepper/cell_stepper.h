@@ -9,8 +9,8 @@
 //              normal correction of each cell to its initial volume).
 // solve() does not change the state, so output written between the two (or a frame of the
 // final state) leaves a run bit-for-bit the same; step() is solve() then advance().
-// Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8, or a tube velocity,
-// tube_drive.h); free space (no walls) by
+// Periodic mode is driven by <u> (or a prescribed <grad p>, eq. 8, or a tube velocity held
+// every step, tube_drive.h); free space (no walls) by
 // an imposed background flow. Without cells a step is one quasi-steady wall solve.
 #include <Eigen/Core>
 #include <functional>
@@ -38,7 +38,8 @@ struct CellStepperOptions {
   LayerDomain domain;                     // periodic box (mean velocity below) or free space
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();        // <u> of eq. (6), periodic
   std::optional<Eigen::Vector3d> pressure_gradient;               // prescribed <grad p> instead
-  std::optional<TubeDrive> tube_drive;  // or a tube velocity: sets mean_velocity at construction
+  std::optional<TubeSection> tube;        // a tube section: its mean velocity measured every step
+  std::optional<double> tube_velocity;    // or that tube velocity held every step (needs `tube`)
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background;  // free space: u_inf(x)
   double gmres_tolerance = 1e-6;
   int gmres_max_iterations = 100;
@@ -63,6 +64,7 @@ struct FlowSolution {
   PointField wall_force;      // F^n at the wall nodes (empty without a wall)
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();      // <u> used
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();  // (8); zero without a wall
+  std::optional<double> tube_velocity;  // U through the options' tube section
   int gmres_cells = 0, gmres_wall = 0;
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
@@ -79,6 +81,11 @@ struct StepReport {
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();
   double max_volume_error = 0.0;  // relative to each cell's initial volume, after the step
   double max_area_error = 0.0;
+  // Largest local area strain |J_S - 1| over the cells' membranes (N grid), before the step.
+  double max_area_strain = 0.0;
+  // Through the options' tube section: the tube velocity U, and with cells the discharge
+  // hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged over the period, cell_flux.h).
+  std::optional<double> tube_velocity, discharge_hematocrit;
   // Collision removal (section 11.2), when h_s > 0: cell pairs (periodic images included) and
   // cells at the wall found closer than h_s, and the largest displacement of a grid point.
   int collision_pairs = 0;
@@ -116,7 +123,8 @@ class CellStepper {
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }
   double dt() const { return options_.dt; }
-  // The <u> that drives a periodic flow (set from the tube velocity where one was given).
+  // The <u> that drives a periodic flow at the start (where a tube velocity is held, the
+  // cell-free one: each step's own is in its FlowSolution).
   const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
@@ -137,6 +145,8 @@ class CellStepper {
  private:
   void archive_wall(StateArchive& a) const;
   void enforce_volume(int c);
+  // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity).
+  double discharge_hematocrit(const FlowSolution& s) const;
   // X^{n+1}, collision removal and the volume constraint (advance() with cells).
   void move_cells(const FlowSolution& s, StepReport& report);
   int points_per_cell() const { return grids_ ? static_cast<int>(grids_->n_grid->grid().size()) : 0; }
@@ -146,6 +156,7 @@ class CellStepper {
   CellStepperOptions options_;
   std::unique_ptr<WallCoupling> wall_;
   std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall
+  std::optional<TubeFlowMeter> tube_meter_;      // with options_.tube
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // the cells' SPME grids
   StepperState state_;
 };

@@ -332,8 +332,8 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
 
 TEST(Case, InconsistentKeysAreErrors) {
   EXPECT_EQ(error_of("[domain]\nbox = [1, 1, 1]\n"),
-            "bad.toml:1: [domain]: a periodic domain needs mean_velocity, pressure_gradient or tube_velocity "
-            "(mean_velocity = [0, 0, 0] for no imposed flow)");
+            "bad.toml:1: [domain]: a periodic domain needs mean_velocity, pressure_gradient, tube_velocity or "
+            "pseudo_shear_rate (mean_velocity = [0, 0, 0] for no imposed flow)");
   EXPECT_EQ(error_of(minimal("pressure_gradient = [0, 0, 1]\n")),
             "bad.toml:4: domain.pressure_gradient: give mean_velocity or pressure_gradient, not both");
   EXPECT_EQ(error_of("[domain]\nmean_velocity = [0, 0, 1]\n"),
@@ -377,6 +377,34 @@ TEST(Case, UnreadableFileIsAnError) {
   }
 }
 
+// [units] (section 6's scales by default) and the drive given as a pseudo-shear rate in 1/s.
+TEST(Case, UnitsAndPseudoShearRate) {
+  const std::string tube = "[domain]\nbox = [5, 5, 4]\npseudo_shear_rate = 200\n[vessel]\ndiameter = 3.5\n";
+  const Case c = parse_case(tube, "t.toml");
+  ASSERT_TRUE(c.domain.pseudo_shear_rate);
+  EXPECT_EQ(*c.domain.pseudo_shear_rate, 200.0);
+  EXPECT_EQ(c.units.length_um, 2.82);
+  EXPECT_EQ(c.units.rate_per_s, 100.0);
+  EXPECT_EQ(c.units.plasma_viscosity_mpas, 1.2);
+  const Case u = parse_case(tube + "[units]\nlength_um = 3.0\nrate_per_s = 50\nplasma_viscosity_mpas = 1.0\n", "t.toml");
+  EXPECT_EQ(u.units.length_um, 3.0);
+  EXPECT_EQ(u.units.rate_per_s, 50.0);
+  EXPECT_EQ(u.units.plasma_viscosity_mpas, 1.0);
+  EXPECT_EQ(parse_case(case_toml(u), "t.toml"), u);
+  EXPECT_NE(case_fingerprint(u), case_fingerprint(c));
+
+  EXPECT_EQ(error_of(tube + "[units]\nrate_per_s = 0\n"),
+            "bad.toml:7: units.rate_per_s: 0 is out of range (allowed: 0 < x <= 1e+09)");
+  EXPECT_TRUE(contains(error_of(tube + "[units]\nlength = 3\n"), "bad.toml:7: units.length: unknown key"));
+  EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\npseudo_shear_rate = 100\n[vessel]\ndiameter = 3.5\n"),
+            "bad.toml:4: domain.pseudo_shear_rate: give tube_velocity or pseudo_shear_rate, not both");
+  EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\npseudo_shear_rate = 100\n"),
+            "bad.toml:3: domain.pseudo_shear_rate: needs a [vessel] of kind \"tube\" or \"constriction\" (the flow "
+            "in its straight section sets <u>); use mean_velocity or pressure_gradient otherwise");
+  EXPECT_TRUE(contains(error_of("[domain]\nbox = [5, 5, 4]\npseudo_shear_rate = -5\n[vessel]\ndiameter = 3.5\n"),
+                       "domain.pseudo_shear_rate: -5 is out of range"));
+}
+
 TEST(Case, TubeVelocityDrivesATubeOrConstrictionOnly) {
   const Case c = parse_case("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\n[vessel]\ndiameter = 3.5\n", "t.toml");
   ASSERT_TRUE(c.domain.tube_velocity);
@@ -390,9 +418,9 @@ TEST(Case, TubeVelocityDrivesATubeOrConstrictionOnly) {
                                 "diameter = 3\ndaughter_diameters = [2, 2]\n"),
                        "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind"));
   EXPECT_EQ(error_of(minimal("tube_velocity = 2\n")),
-            "bad.toml:4: domain.tube_velocity: give tube_velocity or mean_velocity, not both");
+            "bad.toml:4: domain.tube_velocity: give mean_velocity or tube_velocity, not both");
   EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\npressure_gradient = [0, 0, -1]\ntube_velocity = 2\n"),
-            "bad.toml:4: domain.tube_velocity: give tube_velocity or pressure_gradient, not both");
+            "bad.toml:4: domain.tube_velocity: give pressure_gradient or tube_velocity, not both");
   EXPECT_TRUE(contains(error_of("[domain]\nkind = \"free\"\ntube_velocity = 2\n"),
                        "bad.toml:3: domain.tube_velocity: applies only to kind = \"periodic\""));
   EXPECT_TRUE(contains(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = nan\n[vessel]\ndiameter = 3.5\n"),

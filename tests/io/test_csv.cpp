@@ -47,7 +47,7 @@ TEST(Csv, DiagnosticsHeaderIsTheContract) {
             "step,time,dt,mean_velocity_x,mean_velocity_y,mean_velocity_z,pressure_gradient_x,"
             "pressure_gradient_y,pressure_gradient_z,effective_viscosity,tube_hematocrit,max_volume_error,"
             "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds,collision_pairs,wall_contacts,"
-            "collision_displacement");
+            "collision_displacement,tube_velocity,pseudo_shear_rate_per_s,discharge_hematocrit,max_area_strain");
   { CellsCsv c(dir / "cells.csv"); }
   EXPECT_EQ(first_line(dir / "cells.csv"),
             "step,time,cell,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,volume,area,"
@@ -67,6 +67,10 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   tube.collision_pairs = 3;
   tube.wall_contacts = 0;
   tube.collision_displacement = 0.0125;
+  tube.tube_velocity = 2.5;
+  tube.pseudo_shear_rate_per_s = 71.25;
+  tube.discharge_hematocrit = 0.3125;
+  tube.max_area_strain = 0.015625;
   d.write(tube);
   // Read while the writer is still open: the rows are on disk.
   const CsvTable t = read_csv(dir / "diagnostics.csv");
@@ -81,6 +85,12 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   EXPECT_EQ(t.rows[1][t.column("collision_pairs")], "3");
   EXPECT_EQ(t.rows[1][t.column("wall_contacts")], "0");
   EXPECT_EQ(t.rows[1][t.column("collision_displacement")], "0.0125");
+  EXPECT_EQ(t.rows[0][t.column("tube_velocity")], "");
+  EXPECT_EQ(t.rows[0][t.column("max_area_strain")], "");
+  EXPECT_EQ(t.rows[1][t.column("tube_velocity")], "2.5");
+  EXPECT_EQ(t.rows[1][t.column("pseudo_shear_rate_per_s")], "71.25");
+  EXPECT_EQ(t.rows[1][t.column("discharge_hematocrit")], "0.3125");
+  EXPECT_EQ(t.rows[1][t.column("max_area_strain")], "0.015625");
   EXPECT_EQ(std::strtod(t.rows[0][t.column("pressure_gradient_z")].c_str(), nullptr), -1.0 / 3.0);
   EXPECT_EQ(t.rows[1][t.column("step")], "2");
 

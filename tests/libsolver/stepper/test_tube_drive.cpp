@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <numbers>
 
+#include "geometry/surface/reference_shapes.h"
 #include "geometry/vessel/vessel.h"
+#include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/tube_drive.h"
 #include "libsolver/wall/tube_flow.h"
@@ -66,12 +68,106 @@ TEST(TubeDrive, StepperSetsTheMeanVelocityFromTheTubeVelocity) {
   CellStepperOptions o;
   o.domain = LayerDomain{PeriodicBox(kBox), 1e-6};
   o.wall = wall;
-  o.tube_drive = TubeDrive{1.5, axis_point, 2};
-  const CellStepper stepper({}, CellGrids::make(4, 4), o);
+  o.tube = TubeSection{axis_point, 2, 0.5 * kD};
+  o.tube_velocity = 1.5;
+  CellStepper stepper({}, CellGrids::make(4, 4), o);
   EXPECT_NEAR(stepper.mean_velocity().z(), 1.5 / ratio, 1e-9 / ratio);
   EXPECT_EQ(stepper.mean_velocity().x(), 0.0);
   EXPECT_EQ(stepper.mean_velocity().y(), 0.0);
+  // Without cells the tube velocity measured through the box's flux is the one held.
+  const StepReport r = stepper.step();
+  ASSERT_TRUE(r.tube_velocity);
+  EXPECT_NEAR(*r.tube_velocity, 1.5, 1e-6);
 
   o.pressure_gradient = Eigen::Vector3d(0, 0, -1);
   EXPECT_THROW(CellStepper({}, CellGrids::make(4, 4), o), std::invalid_argument);
+  o.pressure_gradient.reset();
+  o.tube.reset();
+  EXPECT_THROW(CellStepper({}, CellGrids::make(4, 4), o), std::invalid_argument);
+}
+
+// The meter's flux outside the vessel, k = Q_out / G from the cell-free unit solve, against the
+// closed form of eq. (45), Q_out = G L^4 F(chi) / (4 pi): at <u> = 0 the box carries no net flux,
+// so the tube carries -Q_out, and the meter's U there is -k G / (pi a^2).
+TEST(TubeDrive, FluxOutsideTheTubeMatchesEquation45) {
+  const double a = 0.5 * kD, pi = std::numbers::pi, G = 1.0;
+  const double exact = G * std::pow(kSide, 4) * exterior_flux_factor(pi * a * a / (kSide * kSide)) / (4 * pi);
+  auto outside = [&](double h) {
+    WallCoupling coupling(tube_wall(h), PeriodicBox(kBox), 1e-8, WallSolveOptions{1e-9, 300, 60});
+    const TubeFlowMeter meter(coupling, TubeSection{Eigen::Vector3d(0.5 * kSide, 0.5 * kSide, 0.3 * kLength), 2, a});
+    return -meter.tube_velocity(0.0, -G) * pi * a * a;
+  };
+  const double coarse = outside(kD / 8), fine = outside(kD / 16);
+  const double e_coarse = std::abs(coarse / exact - 1), e_fine = std::abs(fine / exact - 1);
+  std::printf("Q_out / G: eq. (45) %.6f, h = D/8 %.6f (rel. error %.2e), h = D/16 %.6f (%.2e), order %.2f\n", exact,
+              coarse, e_coarse, fine, e_fine, std::log2(e_coarse / e_fine));
+  EXPECT_LT(e_fine, 5e-3);
+  EXPECT_GT(std::log2(e_coarse / e_fine), 1.5);  // linear elements: second order in h
+}
+
+namespace {
+
+constexpr double kTarget = 2.0;
+
+// A red cell of order 8 on the axis of the tube, the tube velocity held at kTarget.
+CellStepper held_tube(double h, double lambda) {
+  const auto grids = CellGrids::make(8, 16);
+  SHSurface s = make_biconcave(8);
+  s.translate(Eigen::Vector3d(0.5 * kSide, 0.5 * kSide, 0.5 * kLength));
+  Cell c;
+  c.membrane = std::make_shared<const Membrane>(
+      s, grids, MembraneParameters{std::make_shared<SkalakLaw>(12.4, 200.0), 0.0669});
+  c.shape = std::move(s);
+  CellStepperOptions o;
+  o.dt = 2e-3;
+  o.viscosity_ratio = lambda;
+  o.domain = LayerDomain{PeriodicBox(kBox), 1e-6};
+  o.wall = tube_wall(h);
+  o.tube = TubeSection{Eigen::Vector3d(0.5 * kSide, 0.5 * kSide, 0.0), 2, 0.5 * kD};
+  o.tube_velocity = kTarget;
+  return CellStepper({c}, grids, o);
+}
+
+}  // namespace
+
+// With a cell in the tube, each step's <u> holds the tube velocity. The tube velocity is
+// checked against the closed form (45) for the flux outside the tube (not the meter's own
+// cell-free calibration): U = (L^2 <u> - Q_ext(G)) / (pi a^2), within the wall's discretisation
+// error of Q_ext (0.23% of it at h = D/16, FluxOutsideTheTubeMatchesEquation45; Q_ext is 2.7
+// times the tube's flux here, so 0.63% of U, measured). The cell raises the tube's resistance,
+// so <u> rises above the cell-free value (by 12-13%).
+TEST(TubeDrive, TubeVelocityHeldWithACellPresent) {
+  CellStepper stepper = held_tube(kD / 16, 5.0);
+  const double cell_free = stepper.mean_velocity().z();
+  const double a = 0.5 * kD, pi = std::numbers::pi;
+  for (int step = 0; step < 3; ++step) {
+    const StepReport r = stepper.step();
+    ASSERT_TRUE(r.tube_velocity);
+    const double G = -r.pressure_gradient.z();
+    const double outside = G * std::pow(kSide, 4) * exterior_flux_factor(pi * a * a / (kSide * kSide)) / (4 * pi);
+    const double U45 = (kSide * kSide * r.mean_velocity.z() - outside) / (pi * a * a);
+    std::printf("step %d: <u> %.6f (cell-free %.6f), U %.8f, U by (45) %.6f, H_D %.4f\n", step + 1,
+                r.mean_velocity.z(), cell_free, *r.tube_velocity, U45, r.discharge_hematocrit.value_or(-1));
+    EXPECT_NEAR(*r.tube_velocity, kTarget, 1e-9 * kTarget);
+    EXPECT_NEAR(U45, kTarget, 0.01 * kTarget);
+    EXPECT_GT(r.mean_velocity.z(), 1.01 * cell_free);
+  }
+}
+
+// H_D for cells moving at a known velocity v: their flux over the period, V v / L, over the
+// tube's, pi a^2 U, is H_T v / U exactly (H_T = V / (pi a^2 L)).
+TEST(TubeDrive, DischargeHematocritOfACellAtAKnownVelocity) {
+  CellStepper stepper = held_tube(kD / 6, 1.0);
+  const int np = stepper.grids().n_grid->grid().size();
+  const double volume = enclosed_volume(stepper.cells()[0].shape.geometry(*stepper.grids().n_grid));
+  const double a = 0.5 * kD, tube_hematocrit = volume / (std::numbers::pi * a * a * kLength);
+  for (const double v : {1.3, 2.0, 2.7}) {
+    FlowSolution s;
+    s.velocity = Eigen::RowVector3d(0.1, -0.2, v).replicate(np, 1);
+    s.tube_velocity = kTarget;
+    s.mean_velocity = stepper.mean_velocity();
+    const StepReport r = stepper.advance(s);
+    ASSERT_TRUE(r.discharge_hematocrit);
+    EXPECT_NEAR(*r.discharge_hematocrit, tube_hematocrit * v / kTarget, 1e-12);
+  }
 }

@@ -1,0 +1,85 @@
+// What a step measures besides the flow. The cells' volume flux (libsolver/stepper/cell_flux.h), integral_V u_a dV from the surface
+// velocity, against exact values for solenoidal fields whose volume integral is known: a uniform
+// translation (V v), a rigid rotation about a point p (V (omega x (c - p))), and the linear field
+// u = x e_z (V c_x), c the volume centroid. The cells are off-centre, turned discs and
+// ellipsoids, so that nothing cancels by symmetry.
+#include "libsolver/stepper/cell_flux.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "geometry/surface/reference_shapes.h"
+#include "libsolver/membrane/membrane_law.h"
+#include "libsolver/stepper/cell_stepper.h"
+
+using namespace rbcflow;
+
+namespace {
+
+constexpr int kOrder = 12;
+
+std::vector<SHSurface> cells() {
+  SHSurface disc = make_biconcave(kOrder);
+  disc.rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix());
+  disc.translate(Eigen::Vector3d(0.3, -1.1, 2.0));
+  SHSurface ellipsoid = make_ellipsoid(kOrder, Eigen::Vector3d(0.8, 0.9, 1.3));
+  ellipsoid.rotate(Eigen::AngleAxisd(-1.2, Eigen::Vector3d(0.2, 1, 1).normalized()).toRotationMatrix());
+  ellipsoid.translate(Eigen::Vector3d(2.5, 0.4, -0.7));
+  return {disc, ellipsoid};
+}
+
+// The field at every grid point of every cell, stacked.
+template <class Field>
+Eigen::MatrixXd sampled(const std::vector<SHSurface>& s, const SHTransform& grid, Field u) {
+  const Eigen::Index np = grid.grid().size();
+  Eigen::MatrixXd out(np * static_cast<Eigen::Index>(s.size()), 3);
+  for (std::size_t c = 0; c < s.size(); ++c) {
+    const SurfaceGeometry g = s[c].geometry(grid);
+    for (Eigen::Index p = 0; p < np; ++p) out.row(static_cast<Eigen::Index>(c) * np + p) = u(Eigen::Vector3d(g.x.row(p))).transpose();
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(CellFlux, VolumeIntegralsOfSolenoidalFieldsAreExact) {
+  const std::vector<SHSurface> s = cells();
+  const SHTransform grid = SHTransform::gauss(kOrder);
+  double volume = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // sum V c
+  for (const SHSurface& c : s) {
+    const SurfaceGeometry g = c.geometry(grid);
+    volume += enclosed_volume(g);
+    moment += enclosed_volume(g) * volume_centroid(g);
+  }
+  const Eigen::Vector3d v(0.4, -0.3, 1.7), omega(0.5, -1.0, 0.8), p(1.0, 2.0, -0.5);
+  for (int a = 0; a < 3; ++a) {
+    const double translation = cells_volume_flux(s, sampled(s, grid, [&](const Eigen::Vector3d&) { return v; }), grid, a);
+    EXPECT_NEAR(translation, volume * v[a], 1e-12 * volume) << "axis " << a;
+    const double rotation = cells_volume_flux(
+        s, sampled(s, grid, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(omega.cross(x - p)); }), grid, a);
+    EXPECT_NEAR(rotation, omega.cross(moment - volume * p)[a], 1e-11 * volume) << "axis " << a;
+  }
+  const double shear =
+      cells_volume_flux(s, sampled(s, grid, [](const Eigen::Vector3d& x) { return Eigen::Vector3d(0, 0, x.x()); }), grid, 2);
+  EXPECT_NEAR(shear, moment.x(), 1e-11 * volume);
+  EXPECT_THROW(cells_volume_flux(s, Eigen::MatrixXd::Zero(3, 3), grid, 2), std::invalid_argument);
+  EXPECT_THROW(cells_volume_flux(s, sampled(s, grid, [&](const Eigen::Vector3d&) { return v; }), grid, 3),
+               std::invalid_argument);
+}
+
+// StepReport::max_area_strain: a sphere of rest radius 1 held at radius 1.1 has J_S = 1.21 at
+// every point of its membrane, so the largest |J_S - 1| is 0.21.
+TEST(StepReport, AreaStrainOfAUniformlyDilatedSphere) {
+  const auto grids = CellGrids::make(8, 16);
+  const SHSurface rest = make_sphere(8);
+  Cell c;
+  c.membrane = std::make_shared<const Membrane>(
+      rest, grids, MembraneParameters{std::make_shared<SkalakLaw>(12.4, 200.0), 0.0669});
+  c.shape = make_sphere(8, 1.1);
+  CellStepperOptions o;
+  o.dt = 1e-5;
+  CellStepper stepper({c}, grids, o);
+  EXPECT_NEAR(stepper.step().max_area_strain, 0.21, 1e-10);
+}
