@@ -23,6 +23,7 @@
 #include "io/study_plot.h"
 #include "io/vtk_series.h"
 #include "libsolver/wall/pries_law.h"
+#include "scenario/physical_units.h"
 #include "scenario/run.h"
 #include "study_analysis.h"
 
@@ -31,15 +32,45 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMicrometresPerRadius = 2.82;  // a, the equivalent cell radius (paper section 6)
-constexpr double kBand = 0.10;                  // the Pries law's band in the plot
+constexpr double kBand = 0.10;  // the Pries law's band in the plot
 
+// `discharge_hematocrit` and `pries` use Pries's own H_T -> H_D conversion; the columns from
+// `tube_velocity` on are the run's own measurements over the averaged rows, in the physical
+// units of the case's [units] where named so (empty for runs without those diagnostics).
 const std::vector<std::string>& study_columns() {
   static const std::vector<std::string> c = {
       "case", "diameter", "diameter_um", "tube_hematocrit", "discharge_hematocrit", "order", "cells", "steps",
       "time", "steady_from", "rows_averaged", "effective_viscosity", "effective_viscosity_stderr", "pries",
-      "pressure_gradient_fluctuation", "effective_viscosity_drift"};
+      "pressure_gradient_fluctuation", "effective_viscosity_drift", "tube_velocity", "tube_velocity_mm_per_s",
+      "pseudo_shear_rate_per_s", "discharge_hematocrit_measured", "pries_at_measured_hd", "max_area_strain",
+      "apparent_viscosity_mpas", "wall_shear_stress_pa", "pressure_gradient_pa_per_um", "time_ms"};
   return c;
+}
+
+// The measured columns of study.csv (from tube_velocity on) for a run's steady average.
+std::vector<std::string> measured_columns(const Case& c, const SteadyAverage& a) {
+  const PhysicalUnits si(c.units);
+  const double D = c.vessel->diameter, G = -a.pressure_gradient;
+  std::vector<std::string> out;
+  if (a.tube_velocity) {
+    out = {csv_number(*a.tube_velocity), csv_number(si.mm_per_s(*a.tube_velocity)),
+           csv_number(si.per_second(*a.tube_velocity / D))};
+  } else {
+    out = {"", "", ""};
+  }
+  if (a.discharge_hematocrit) {
+    out.push_back(csv_number(*a.discharge_hematocrit));
+    out.push_back(csv_number(pries_relative_viscosity(si.micrometres(D), *a.discharge_hematocrit)));
+  } else {
+    out.insert(out.end(), {"", ""});
+  }
+  out.push_back(csv_number(a.max_area_strain));
+  // The wall carries the pressure drop: tau_w = G D / 4 with cells as without.
+  out.push_back(csv_number(si.mpa_s(a.mean)));
+  out.push_back(csv_number(si.pascals(G * D / 4)));
+  out.push_back(csv_number(si.pa_per_um(G)));
+  out.push_back(csv_number(si.milliseconds(a.to_time)));
+  return out;
 }
 
 double parse_number(const std::string& text, const std::string& what, double lo, double hi) {
@@ -66,8 +97,9 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
   o.width = c.output.render_size[0];
   o.height = c.output.render_size[1];
   char label[128];
-  std::snprintf(label, sizeof label, "D = %.2f um   step %ld   t = %.4g", c.vessel->diameter * kMicrometresPerRadius,
-                frame.step, frame.time);
+  const PhysicalUnits si(c.units);
+  std::snprintf(label, sizeof label, "D = %.2f um   step %ld   t = %.4g (%.4g ms)", si.micrometres(c.vessel->diameter),
+                frame.step, frame.time, si.milliseconds(frame.time));
   o.label = label;
   for (const RenderView view : {RenderView::end, RenderView::side}) {
     o.view = view;
@@ -242,17 +274,20 @@ int run_study(Args& args) {
     const SteadyAverage a = steady_average(c.output.dir / "diagnostics.csv", c.vessel->axis, fraction);
     const CsvTable diagnostics = read_csv(c.output.dir / "diagnostics.csv");
     const double ht = std::stod(diagnostics.rows.front()[diagnostics.column("tube_hematocrit")]);
-    const double d_um = c.vessel->diameter * kMicrometresPerRadius;
+    const double d_um = PhysicalUnits(c.units).micrometres(c.vessel->diameter);
     const double hd = discharge_hematocrit(d_um, ht);
     const double pries = pries_relative_viscosity(d_um, hd);
     const CsvTable cells = read_csv(c.output.dir / "cells.csv");
     const long n_cells = std::count_if(cells.rows.begin(), cells.rows.end(),
                                        [&](const auto& r) { return r[0] == cells.rows.front()[0]; });
-    csv.write({stem, csv_number(c.vessel->diameter), csv_number(d_um), csv_number(ht), csv_number(hd),
-               std::to_string(c.cells->order), std::to_string(n_cells), std::to_string(diagnostics.rows.size()),
-               csv_number(a.to_time), csv_number(a.from_time), std::to_string(a.rows), csv_number(a.mean),
-               csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation),
-               csv_number(a.drift)});
+    std::vector<std::string> row = {
+        stem, csv_number(c.vessel->diameter), csv_number(d_um), csv_number(ht), csv_number(hd),
+        std::to_string(c.cells->order), std::to_string(n_cells), std::to_string(diagnostics.rows.size()),
+        csv_number(a.to_time), csv_number(a.from_time), std::to_string(a.rows), csv_number(a.mean),
+        csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation), csv_number(a.drift)};
+    const std::vector<std::string> measured = measured_columns(c, a);
+    row.insert(row.end(), measured.begin(), measured.end());
+    csv.write(row);
     if (c.output.vtk) render_tube(c.output.dir, c, out, stem);
     plot.diameter.push_back(d_um);
     plot.value.push_back(a.mean);
@@ -262,6 +297,13 @@ int run_study(Args& args) {
                 "drift %+.2f%%; Pries %.4f; <grad p> fluctuation %.2f%%\n",
                 stem.c_str(), d_um, ht, hd, a.mean, a.standard_error, a.from_time, a.to_time, a.rows, 100 * a.drift,
                 pries, 100 * a.pressure_gradient_fluctuation);
+    if (a.tube_velocity && a.discharge_hematocrit) {
+      const PhysicalUnits si(c.units);
+      std::printf("%s: U = %.3g mm/s (U/D %.3g 1/s), measured H_D = %.3f: Pries %.4f; max area strain %.3g\n",
+                  stem.c_str(), si.mm_per_s(*a.tube_velocity), si.per_second(*a.tube_velocity / c.vessel->diameter),
+                  *a.discharge_hematocrit, pries_relative_viscosity(d_um, *a.discharge_hematocrit),
+                  a.max_area_strain.value_or(0));
+    }
   }
   if (plot.diameter.empty()) throw std::runtime_error("rbcflow study: every run failed; nothing to plot");
   const double ht = hematocrit_sum / static_cast<double>(plot.diameter.size());

@@ -21,6 +21,22 @@ double mean_of(const std::vector<double>& v, std::size_t begin, std::size_t end)
   return s / static_cast<double>(end - begin);
 }
 
+// The mean (or the largest, with `largest`) of a column over the rows with time >= from; empty
+// when the column is missing or any of those rows has no value.
+std::optional<double> column_summary(const CsvTable& table, const std::string& name, double from, bool largest) {
+  const auto it = std::find(table.columns.begin(), table.columns.end(), name);
+  if (it == table.columns.end()) return std::nullopt;
+  const std::size_t col = static_cast<std::size_t>(it - table.columns.begin()), time = table.column("time");
+  std::vector<double> v;
+  for (const auto& row : table.rows) {
+    if (std::strtod(row[time].c_str(), nullptr) < from) continue;
+    if (row[col].empty()) return std::nullopt;
+    v.push_back(std::strtod(row[col].c_str(), nullptr));
+  }
+  if (v.empty()) return std::nullopt;
+  return largest ? *std::max_element(v.begin(), v.end()) : mean_of(v, 0, v.size());
+}
+
 }  // namespace
 
 SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double steady_fraction) {
@@ -56,6 +72,10 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
   }
   if (n >= 2) a.drift = (mean_of(viscosity, n - n / 2, n) - mean_of(viscosity, 0, n / 2)) / a.mean;
   const double g = mean_of(gradient, 0, n);
+  a.pressure_gradient = g;
+  a.tube_velocity = column_summary(table, "tube_velocity", a.from_time, false);
+  a.discharge_hematocrit = column_summary(table, "discharge_hematocrit", a.from_time, false);
+  a.max_area_strain = column_summary(table, "max_area_strain", a.from_time, true);
   const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
   a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;
   return a;

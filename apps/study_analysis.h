@@ -4,6 +4,7 @@
 // standard error by batch means, its drift across the averaged part, and the fluctuation of the
 // mean pressure gradient.
 #include <filesystem>
+#include <optional>
 
 namespace rbcflow::cli {
 
@@ -17,6 +18,10 @@ struct SteadyAverage {
   // still settling shows a drift larger than a few standard errors (0 with fewer than 2 rows).
   double drift = 0;
   double pressure_gradient_fluctuation = 0;  // (max - min) / |mean| of <dp/ds> along the axis
+  double pressure_gradient = 0;              // mean <dp/ds> along the axis
+  // Means over the same rows of the tube's measured flow (empty where diagnostics.csv has no
+  // value: runs before these columns, or no cells), and the largest local area strain.
+  std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain;
 };
 
 // Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file
