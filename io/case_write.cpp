@@ -260,7 +260,11 @@ std::string case_fingerprint(const Case& c) {
     mesh_bytes = bytes.str();
     physics.vessel->path = physics.vessel->path.filename();
   }
-  const std::uint64_t h = fnv1a(mesh_bytes, fnv1a(case_toml(physics)));
+  // The scales of [units] change the physics only through domain.pseudo_shear_rate; a case
+  // with the default scales hashes as before [units] existed, so earlier checkpoints still fit.
+  std::string text = case_toml(physics);
+  if (physics.units == CaseUnits{}) text.erase(text.rfind("\n[units]\n"));
+  const std::uint64_t h = fnv1a(mesh_bytes, fnv1a(text));
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;

@@ -392,6 +392,12 @@ TEST(Case, UnitsAndPseudoShearRate) {
   EXPECT_EQ(u.units.plasma_viscosity_mpas, 1.0);
   EXPECT_EQ(parse_case(case_toml(u), "t.toml"), u);
   EXPECT_NE(case_fingerprint(u), case_fingerprint(c));
+  // With the default scales a case hashes as it did before [units] (this one at 8968d70:
+  // rbcflow run's message for a checkpoint of another case), so its checkpoints still fit.
+  const Case walls = parse_case("[domain]\nbox = [5.0, 5.0, 3.0]\ntube_velocity = 1.0\nviscosity_ratio = 1.0\n"
+                                "[vessel]\ndiameter = 3.5\nelement_size = 0.5\n[time]\nend = 0.02\ndt = 0.01\n",
+                                "fp.toml");
+  EXPECT_EQ(case_fingerprint(walls), "54010ac9f69d08f2");
 
   EXPECT_EQ(error_of(tube + "[units]\nrate_per_s = 0\n"),
             "bad.toml:7: units.rate_per_s: 0 is out of range (allowed: 0 < x <= 1e+09)");
