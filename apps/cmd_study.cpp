@@ -22,6 +22,8 @@
 #include "io/render.h"
 #include "io/study_plot.h"
 #include "io/vtk_series.h"
+#include "io/xdmf_reader.h"
+#include "geometry/contact/radial_profile.h"
 #include "libsolver/wall/pries_law.h"
 #include "scenario/physical_units.h"
 #include "scenario/run.h"
@@ -43,7 +45,8 @@ const std::vector<std::string>& study_columns() {
       "time", "steady_from", "rows_averaged", "effective_viscosity", "effective_viscosity_stderr", "pries",
       "pressure_gradient_fluctuation", "effective_viscosity_drift", "tube_velocity", "tube_velocity_mm_per_s",
       "pseudo_shear_rate_per_s", "discharge_hematocrit_measured", "pries_at_measured_hd", "max_area_strain",
-      "apparent_viscosity_mpas", "wall_shear_stress_pa", "pressure_gradient_pa_per_um", "time_ms"};
+      "apparent_viscosity_mpas", "wall_shear_stress_pa", "pressure_gradient_pa_per_um", "time_ms", "cell_free_layer",
+      "cell_free_layer_um"};
   return c;
 }
 
@@ -70,6 +73,8 @@ std::vector<std::string> measured_columns(const Case& c, const SteadyAverage& a)
   out.push_back(csv_number(si.pascals(G * D / 4)));
   out.push_back(csv_number(si.pa_per_um(G)));
   out.push_back(csv_number(si.milliseconds(a.to_time)));
+  out.push_back(csv_number(a.cell_free_layer));
+  out.push_back(a.cell_free_layer ? csv_number(si.micrometres(*a.cell_free_layer)) : "");
   return out;
 }
 
@@ -105,6 +110,41 @@ void render_tube(const fs::path& run_dir, const Case& c, const fs::path& out, co
     o.view = view;
     render_png(frame.surfaces, o, out / "renders" / (stem + "_" + to_string(view) + ".png"));
   }
+}
+
+// The radial hematocrit profile of a run (geometry/contact/radial_profile.h): the cells' volume
+// fraction in 20 annuli, averaged over the XDMF frames of the steady part (the last frame when
+// none falls in it); empty without XDMF frames.
+constexpr int kProfileBins = 20;
+constexpr double kProfileSpacing = 0.1;
+
+std::vector<double> radial_hematocrit(const Case& c, const fs::path& run_dir, double from_time) {
+  if (!c.output.xdmf) return {};
+  std::vector<XdmfFrameTime> frames = read_xdmf_frames(run_dir);
+  std::vector<XdmfFrameTime> steady;
+  for (const XdmfFrameTime& f : frames)
+    if (f.time >= from_time) steady.push_back(f);
+  if (steady.empty() && !frames.empty()) steady.push_back(frames.back());
+  RadialProfileSpec spec;
+  spec.axis = c.vessel->axis;
+  spec.axis_point = 0.5 * Eigen::Vector3d(c.domain.box[0], c.domain.box[1], c.domain.box[2]);
+  spec.radius = 0.5 * c.vessel->diameter;
+  spec.period = c.domain.box[spec.axis];
+  spec.bins = kProfileBins;
+  spec.spacing = kProfileSpacing;
+  std::vector<double> mean(kProfileBins, 0.0);
+  for (const XdmfFrameTime& f : steady) {
+    const XdmfFrame frame = read_xdmf_frame(run_dir, f.step);
+    for (const Surface& s : frame.surfaces) {
+      if (s.name != "cells") continue;
+      const auto id = std::find_if(s.fields.begin(), s.fields.end(), [](const SurfaceField& x) { return x.name == "cell"; });
+      if (id == s.fields.end()) throw std::runtime_error(run_dir.string() + ": the cells' surface has no cell field");
+      const Eigen::VectorXi component = id->values.col(0).array().round().cast<int>();
+      const std::vector<double> f_i = radial_volume_fraction(s.mesh, component, spec);
+      for (int i = 0; i < kProfileBins; ++i) mean[i] += f_i[i] / static_cast<double>(steady.size());
+    }
+  }
+  return steady.empty() ? std::vector<double>{} : mean;
 }
 
 // Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write up to
@@ -185,8 +225,11 @@ void print_help() {
       "  DIR/<case name>/, averages the effective viscosity (45)-(46) over time >= F x the run's\n"
       "  end (default F = 0.5) with a batch-means standard error, and writes DIR/study.csv,\n"
       "  DIR/study.png (mu_eff against D in um, with the Pries law at the runs' tube hematocrit,\n"
-      "  converted to the discharge hematocrit, and its +-10%% band) and DIR/renders/<case>_end.png\n"
-      "  and _side.png (fig. 12). --steps N runs N steps of each case instead of to time.end.\n"
+      "  converted to the discharge hematocrit, and its +-10%% band), DIR/renders/<case>_end.png\n"
+      "  and _side.png (fig. 12), and each tube's radial hematocrit (DIR/<case>_radial_hematocrit.csv,\n"
+      "  all of them in DIR/radial_hematocrit.png). study.csv also holds each run's measured tube\n"
+      "  velocity, discharge hematocrit, area strain and cell-free layer, and physical units.\n"
+      "  --steps N runs N steps of each case instead of to time.end.\n"
       "  A case that is run replaces what DIR/<case name>/ held (rbcflow run --overwrite).\n"
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
@@ -242,6 +285,10 @@ int run_study(Args& args) {
 
   CsvWriter csv(fs::path(out) / "study.csv", study_columns());
   StudyPlot plot;
+  CurvesPlot profiles;
+  profiles.title = "Radial hematocrit (volume fraction of cells, steady part)";
+  profiles.x_title = "r / R";
+  profiles.y_title = "hematocrit";
   double hematocrit_sum = 0;
   std::vector<std::string> failed;
   for (std::size_t k = 0; k < cases.size(); ++k) {
@@ -289,6 +336,28 @@ int run_study(Args& args) {
     row.insert(row.end(), measured.begin(), measured.end());
     csv.write(row);
     if (c.output.vtk) render_tube(c.output.dir, c, out, stem);
+    if (const std::vector<double> h = radial_hematocrit(c, c.output.dir, a.from_time); !h.empty()) {
+      const PhysicalUnits si(c.units);
+      const double width = 0.5 * c.vessel->diameter / kProfileBins;
+      CsvWriter profile(fs::path(out) / (stem + "_radial_hematocrit.csv"), {"r", "r_um", "r_over_radius", "hematocrit"});
+      std::vector<double> x, y;
+      double cross_section = 0.0;  // the area-weighted mean: the tube hematocrit of the frames
+      for (int i = 0; i < kProfileBins; ++i) {
+        const double r = (i + 0.5) * width;
+        profile.write({csv_number(r), csv_number(si.micrometres(r)), csv_number(r / (0.5 * c.vessel->diameter)),
+                       csv_number(h[i])});
+        x.push_back(r / (0.5 * c.vessel->diameter));
+        y.push_back(h[i]);
+        cross_section += h[i] * (2 * i + 1) / (kProfileBins * kProfileBins);
+      }
+      profiles.names.push_back(stem + " (D = " + csv_number(std::round(d_um * 100) / 100) + " um)");
+      profiles.x.push_back(std::move(x));
+      profiles.y.push_back(std::move(y));
+      if (!quiet) {
+        std::printf("%s: radial hematocrit in %s_radial_hematocrit.csv (its area-weighted mean %.3f; H_T %.3f)\n",
+                    stem.c_str(), stem.c_str(), cross_section, ht);
+      }
+    }
     plot.diameter.push_back(d_um);
     plot.value.push_back(a.mean);
     plot.error.push_back(a.standard_error);
@@ -322,6 +391,7 @@ int run_study(Args& args) {
   plot.title = title;
   plot.reference_name = "Pries et al. 1992";
   plot_study(plot, fs::path(out) / "study.png");
+  if (!profiles.names.empty()) plot_curves(profiles, fs::path(out) / "radial_hematocrit.png");
   std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());
   if (failed.empty()) return 0;
   std::string names;

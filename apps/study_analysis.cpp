@@ -76,6 +76,7 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
   a.tube_velocity = column_summary(table, "tube_velocity", a.from_time, false);
   a.discharge_hematocrit = column_summary(table, "discharge_hematocrit", a.from_time, false);
   a.max_area_strain = column_summary(table, "max_area_strain", a.from_time, true);
+  a.cell_free_layer = column_summary(table, "cell_free_layer", a.from_time, false);
   const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
   a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;
   return a;

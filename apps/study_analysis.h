@@ -21,7 +21,7 @@ struct SteadyAverage {
   double pressure_gradient = 0;              // mean <dp/ds> along the axis
   // Means over the same rows of the tube's measured flow (empty where diagnostics.csv has no
   // value: runs before these columns, or no cells), and the largest local area strain.
-  std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain;
+  std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain, cell_free_layer;
 };
 
 // Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file

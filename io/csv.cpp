@@ -40,11 +40,16 @@ std::vector<std::string> lines_of(const fs::path& path) {
 }
 
 // Keeps the header and the rows of `path` with step <= resume_step (rewritten atomically).
+// A file written by an earlier version has the leading columns of today's header (columns are
+// only ever added at the end): its rows are kept, with empty fields for the new columns.
 void truncate_after(const fs::path& path, const std::string& header, long resume_step) {
   const std::vector<std::string> lines = lines_of(path);
-  if (lines.empty() || lines.front() != header) {
-    throw std::runtime_error("cannot continue " + path.string() + ": its header is not that of rbcflow");
-  }
+  const std::size_t columns = split(header).size();
+  const bool leading = !lines.empty() && header.starts_with(lines.front()) &&
+                       (header.size() == lines.front().size() || header[lines.front().size()] == ',');
+  if (!leading) throw std::runtime_error("cannot continue " + path.string() + ": its header is not that of rbcflow");
+  const std::size_t old_columns = split(lines.front()).size();
+  const std::string padding(columns - old_columns, ',');
   std::string kept = header + "\n";
   for (std::size_t i = 1; i < lines.size(); ++i) {
     long step = 0;
@@ -52,8 +57,8 @@ void truncate_after(const fs::path& path, const std::string& header, long resume
     const auto r = std::from_chars(l.data(), l.data() + l.size(), step);
     // A row cut short by a crash has no newline and fails the field count later: drop it too.
     if (r.ec != std::errc() || step > resume_step) continue;
-    if (split(l).size() != split(header).size()) continue;
-    kept.append(l).append("\n");
+    if (split(l).size() != old_columns) continue;
+    kept.append(l).append(padding).append("\n");
   }
   write_atomically(path, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
@@ -91,7 +96,7 @@ const std::vector<std::string>& diagnostics_columns() {
       "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z", "effective_viscosity",
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
       "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement",
-      "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain"};
+      "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain", "cell_free_layer"};
   return columns;
 }
 
@@ -138,6 +143,7 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(csv_number(r.collision_displacement));
   row.add(csv_number(r.tube_velocity)).add(csv_number(r.pseudo_shear_rate_per_s));
   row.add(csv_number(r.discharge_hematocrit)).add(csv_number(r.max_area_strain));
+  row.add(csv_number(r.cell_free_layer));
   csv_.write(row.fields);
 }
 

@@ -38,6 +38,7 @@ struct DiagnosticsRow {
   std::optional<double> pseudo_shear_rate_per_s;
   std::optional<double> discharge_hematocrit;
   std::optional<double> max_area_strain;
+  std::optional<double> cell_free_layer;  // a tube or constriction with cells (cell_free_layer.h)
 };
 
 struct CellRow {

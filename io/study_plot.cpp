@@ -43,9 +43,8 @@ vtkPlot* add(vtkChartXY* chart, int type, const std::string& name, const std::ve
   return p;
 }
 
-}  // namespace
-
-void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width, int height) {
+// An off-screen chart view of the given size on a white background.
+vtkNew<vtkContextView> chart_view(const std::filesystem::path& png, int width, int height) {
   if (!display_available()) {
     throw std::runtime_error("cannot plot " + png.string() + ": no X display (see docs/rendering.md)");
   }
@@ -56,6 +55,28 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
   view->SetInteractor(nullptr);
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(width, height);
+  return view;
+}
+
+}  // namespace
+
+void plot_curves(const CurvesPlot& c, const std::filesystem::path& png, int width, int height) {
+  vtkNew<vtkContextView> view = chart_view(png, width, height);
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetTitle(c.title);
+  chart->GetTitleProperties()->SetFontSize(16);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(c.x_title);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(c.y_title);
+  chart->SetShowLegend(true);
+  static const unsigned char palette[6][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
+                                              {214, 39, 40},  {148, 103, 189}, {140, 86, 75}};
+  for (std::size_t k = 0; k < c.names.size(); ++k) add(chart, vtkChart::LINE, c.names[k], c.x[k], c.y[k], palette[k % 6], 2.0f);
+  write_png(view->GetRenderWindow(), png);
+}
+
+void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width, int height) {
+  vtkNew<vtkContextView> view = chart_view(png, width, height);
   vtkNew<vtkChartXY> chart;
   view->GetScene()->AddItem(chart);
   chart->SetTitle(s.title);

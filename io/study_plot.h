@@ -1,6 +1,7 @@
 #pragma once
-// The PNG of a tube study (paper fig. 13): the measured effective viscosity against the tube
-// diameter, with error bars, over a reference curve and its band (the Pries law +-10%).
+// The PNGs of a tube study: the measured effective viscosity against the tube diameter (paper
+// fig. 13), with error bars, over a reference curve and its band (the Pries law +-10%); and
+// curves of one quantity per tube.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,5 +17,13 @@ struct StudyPlot {
 
 // Writes `png` atomically; throws std::runtime_error when there is no display or it cannot.
 void plot_study(const StudyPlot& plot, const std::filesystem::path& png, int width = 1000, int height = 700);
+
+// Curves on common axes, one per tube (the radial hematocrit profiles of a study).
+struct CurvesPlot {
+  std::string title, x_title, y_title;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> x, y;
+};
+void plot_curves(const CurvesPlot& plot, const std::filesystem::path& png, int width = 1000, int height = 700);
 
 }  // namespace rbcflow

@@ -10,6 +10,7 @@
 
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/stepper/cell_flux.h"
+#include "libsolver/stepper/cell_free_layer.h"
 
 namespace rbcflow {
 
@@ -309,6 +310,12 @@ StepReport CellStepper::advance(const FlowSolution& s) {
     report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
   report.tube_velocity = s.tube_velocity;
   if (s.tube_velocity && !cells_.empty()) report.discharge_hematocrit = discharge_hematocrit(s);
+  if (options_.tube && !cells_.empty()) {
+    std::vector<SHSurface> shapes;
+    for (const Cell& c : cells_) shapes.push_back(c.shape);
+    report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
+                                             options_.domain.box->lengths()[options_.tube->axis]);
+  }
   if (!cells_.empty()) move_cells(s, report);
   state_.oldest_velocity = std::move(state_.older_velocity);
   state_.older_velocity = std::move(state_.previous_velocity);

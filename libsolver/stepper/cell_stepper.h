@@ -86,6 +86,7 @@ struct StepReport {
   // Through the options' tube section: the tube velocity U, and with cells the discharge
   // hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged over the period, cell_flux.h).
   std::optional<double> tube_velocity, discharge_hematocrit;
+  std::optional<double> cell_free_layer;  // with cells in the tube section's tube (cell_free_layer.h)
   // Collision removal (section 11.2), when h_s > 0: cell pairs (periodic images included) and
   // cells at the wall found closer than h_s, and the largest displacement of a grid point.
   int collision_pairs = 0;

@@ -100,15 +100,17 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
   fs::remove(path);
   {
     CsvWriter csv(path, {"step", "time", "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z",
-                         "effective_viscosity", "tube_velocity", "discharge_hematocrit", "max_area_strain"});
+                         "effective_viscosity", "tube_velocity", "discharge_hematocrit", "max_area_strain",
+                         "cell_free_layer"});
     for (int i = 1; i <= 100; ++i) {
       // Linear in i: the mean over i = 50..100 is the value at i = 75.
       csv.write({std::to_string(i), csv_number(0.01 * i), "0", "0", "-40", "1.5", csv_number(2.0 + 0.01 * i),
-                 csv_number(0.25 + 0.001 * i), csv_number(i % 7 == 0 ? 0.03 : 0.01)});
+                 csv_number(0.25 + 0.001 * i), csv_number(i % 7 == 0 ? 0.03 : 0.01), "0.5"});
     }
   }
   const cli::SteadyAverage a = cli::steady_average(path, 2, 0.5);
-  ASSERT_TRUE(a.tube_velocity && a.discharge_hematocrit && a.max_area_strain);
+  ASSERT_TRUE(a.tube_velocity && a.discharge_hematocrit && a.max_area_strain && a.cell_free_layer);
+  EXPECT_EQ(*a.cell_free_layer, 0.5);
   EXPECT_NEAR(*a.tube_velocity, 2.75, 1e-12);
   EXPECT_NEAR(*a.discharge_hematocrit, 0.325, 1e-12);
   EXPECT_EQ(*a.max_area_strain, 0.03);
@@ -117,6 +119,6 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
 
   const fs::path old = write_diagnostics("without_measured", 10, [](int) { return 1.25; }, [](int) { return -40.0; });
   const cli::SteadyAverage b = cli::steady_average(old, 2, 0.5);
-  EXPECT_FALSE(b.tube_velocity || b.discharge_hematocrit || b.max_area_strain);
+  EXPECT_FALSE(b.tube_velocity || b.discharge_hematocrit || b.max_area_strain || b.cell_free_layer);
   fs::remove(old);
 }

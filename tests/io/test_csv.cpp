@@ -47,7 +47,8 @@ TEST(Csv, DiagnosticsHeaderIsTheContract) {
             "step,time,dt,mean_velocity_x,mean_velocity_y,mean_velocity_z,pressure_gradient_x,"
             "pressure_gradient_y,pressure_gradient_z,effective_viscosity,tube_hematocrit,max_volume_error,"
             "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds,collision_pairs,wall_contacts,"
-            "collision_displacement,tube_velocity,pseudo_shear_rate_per_s,discharge_hematocrit,max_area_strain");
+            "collision_displacement,tube_velocity,pseudo_shear_rate_per_s,discharge_hematocrit,max_area_strain,"
+            "cell_free_layer");
   { CellsCsv c(dir / "cells.csv"); }
   EXPECT_EQ(first_line(dir / "cells.csv"),
             "step,time,cell,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,volume,area,"
@@ -71,6 +72,7 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   tube.pseudo_shear_rate_per_s = 71.25;
   tube.discharge_hematocrit = 0.3125;
   tube.max_area_strain = 0.015625;
+  tube.cell_free_layer = 0.375;
   d.write(tube);
   // Read while the writer is still open: the rows are on disk.
   const CsvTable t = read_csv(dir / "diagnostics.csv");
@@ -91,6 +93,7 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   EXPECT_EQ(t.rows[1][t.column("pseudo_shear_rate_per_s")], "71.25");
   EXPECT_EQ(t.rows[1][t.column("discharge_hematocrit")], "0.3125");
   EXPECT_EQ(t.rows[1][t.column("max_area_strain")], "0.015625");
+  EXPECT_EQ(t.rows[1][t.column("cell_free_layer")], "0.375");
   EXPECT_EQ(std::strtod(t.rows[0][t.column("pressure_gradient_z")].c_str(), nullptr), -1.0 / 3.0);
   EXPECT_EQ(t.rows[1][t.column("step")], "2");
 
@@ -129,6 +132,36 @@ TEST(Csv, RestartKeepsRowsUpToTheCheckpointAndAppends) {
   // No file yet: a restart starts one.
   { DiagnosticsCsv d(dir / "new.csv", 3); }
   EXPECT_EQ(read_csv(dir / "new.csv").columns, diagnostics_columns());
+  fs::remove_all(dir);
+}
+
+// A run written by an earlier version (the contract's first 20 columns, before the tube
+// columns were added) continues: its rows are kept, padded with empty fields.
+TEST(Csv, RestartContinuesAFileWithTheEarlierColumns) {
+  const fs::path dir = fresh_dir("rbcflow_test_csv_earlier");
+  const fs::path path = dir / "diagnostics.csv";
+  std::vector<std::string> earlier(diagnostics_columns().begin(), diagnostics_columns().begin() + 20);
+  ASSERT_EQ(earlier.back(), "collision_displacement");
+  {
+    CsvWriter w(path, earlier);
+    for (int s = 1; s <= 3; ++s) w.write(std::vector<std::string>(20, std::to_string(s)));
+  }
+  {
+    DiagnosticsCsv d(path, 2);
+    DiagnosticsRow r = row(3);
+    r.tube_velocity = 2.5;
+    d.write(r);
+  }
+  const CsvTable t = read_csv(path);
+  EXPECT_EQ(t.columns, diagnostics_columns());
+  ASSERT_EQ(t.rows.size(), 3u);
+  EXPECT_EQ(t.rows[1][t.column("collision_displacement")], "2");
+  EXPECT_EQ(t.rows[1][t.column("tube_velocity")], "");
+  EXPECT_EQ(t.rows[2][t.column("tube_velocity")], "2.5");
+  // A header that is not a leading part of today's (a column renamed) is refused.
+  earlier.back() = "collision_push";
+  { CsvWriter w(dir / "renamed.csv", earlier); }
+  EXPECT_THROW(DiagnosticsCsv(dir / "renamed.csv", 1), std::runtime_error);
   fs::remove_all(dir);
 }
 

@@ -4,6 +4,7 @@
 // u = x e_z (V c_x), c the volume centroid. The cells are off-centre, turned discs and
 // ellipsoids, so that nothing cancels by symmetry.
 #include "libsolver/stepper/cell_flux.h"
+#include "libsolver/stepper/cell_free_layer.h"
 
 #include <gtest/gtest.h>
 
@@ -82,4 +83,24 @@ TEST(StepReport, AreaStrainOfAUniformlyDilatedSphere) {
   o.dt = 1e-5;
   CellStepper stepper({c}, grids, o);
   EXPECT_NEAR(stepper.step().max_area_strain, 0.21, 1e-10);
+}
+
+// The cell-free layer against its value for spheres centred on the axis of a tube of radius R:
+// in every sector the outermost membrane point is on the Gauss colatitude nearest the equator,
+// at rho max_i sin(theta_i) from the axis. Two spheres in the two halves of the period (one of
+// them a period further on: cells are not wrapped) give the mean of their two layers.
+TEST(CellFreeLayer, SpheresOnTheAxisOfATube) {
+  const int order = 16;
+  const SHTransform grid = SHTransform::gauss(order);
+  double outermost = 0.0;  // max_i sin(theta_i)
+  for (const double theta : grid.grid().theta()) outermost = std::max(outermost, std::sin(theta));
+  const double R = 2.0, period = 6.0;
+  const TubeSection tube{Eigen::Vector3d(3.0, 3.0, 0.0), 2, R};
+  SHSurface small = make_sphere(order, 0.8), large = make_sphere(order, 1.2);
+  small.translate(Eigen::Vector3d(3.0, 3.0, 1.5));
+  large.translate(Eigen::Vector3d(3.0, 3.0, 4.5 + period));
+  EXPECT_NEAR(cell_free_layer({small}, grid, tube, period, {period, 16}), R - 0.8 * outermost, 1e-12);
+  EXPECT_NEAR(cell_free_layer({small, large}, grid, tube, period, {0.5 * period, 16}),
+              R - 0.5 * (0.8 + 1.2) * outermost, 1e-12);
+  EXPECT_THROW(cell_free_layer({}, grid, tube, period), std::invalid_argument);
 }

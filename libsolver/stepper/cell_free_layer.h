@@ -1,0 +1,26 @@
+#pragma once
+// The cell-free layer of a straight tube: the plasma layer between the wall and the outer edge
+// of the cells' core. The edge is taken, as in simulations of blood in tubes (Fedosov et al.,
+// Biophys. J. 98, 2010), from the cells' membranes: the tube's period is divided into slices
+// along the axis and sectors about it, the edge in each bin is the largest distance from the
+// axis of a membrane point in it, and the layer is the radius less that edge, averaged over the
+// bins that hold a membrane point (single-file cells leave bins between them empty).
+#include <vector>
+
+#include "geometry/sph/sph_transform.h"
+#include "geometry/surface/sh_surface.h"
+#include "libsolver/stepper/tube_drive.h"
+
+namespace rbcflow {
+
+struct CellFreeLayerBins {
+  double slice_length = 0.5;  // along the axis, in a (rounded to divide the period)
+  int sectors = 16;
+};
+
+// `period`: the tube's period along its axis. Throws std::invalid_argument without cells or
+// for bins that are not positive.
+double cell_free_layer(const std::vector<SHSurface>& cells, const SHTransform& grid, const TubeSection& tube,
+                       double period, const CellFreeLayerBins& bins = {});
+
+}  // namespace rbcflow
