@@ -46,7 +46,7 @@ const std::vector<std::string>& study_columns() {
       "pressure_gradient_fluctuation", "effective_viscosity_drift", "tube_velocity", "tube_velocity_mm_per_s",
       "pseudo_shear_rate_per_s", "discharge_hematocrit_measured", "pries_at_measured_hd", "max_area_strain",
       "apparent_viscosity_mpas", "wall_shear_stress_pa", "pressure_gradient_pa_per_um", "time_ms", "cell_free_layer",
-      "cell_free_layer_um"};
+      "cell_free_layer_um", "min_wall_gap", "wall_element_size"};
   return c;
 }
 
@@ -75,6 +75,8 @@ std::vector<std::string> measured_columns(const Case& c, const SteadyAverage& a)
   out.push_back(csv_number(si.milliseconds(a.to_time)));
   out.push_back(csv_number(a.cell_free_layer));
   out.push_back(a.cell_free_layer ? csv_number(si.micrometres(*a.cell_free_layer)) : "");
+  out.push_back(csv_number(a.min_wall_gap));
+  out.push_back(csv_number(c.vessel->element_size));
   return out;
 }
 
@@ -285,6 +287,7 @@ int run_study(Args& args) {
 
   CsvWriter csv(fs::path(out) / "study.csv", study_columns());
   StudyPlot plot;
+  std::vector<double> measured_hd;  // Pries at each run's measured H_D (-1: not measured)
   CurvesPlot profiles;
   profiles.title = "Radial hematocrit (volume fraction of cells, steady part)";
   profiles.x_title = "r / R";
@@ -361,6 +364,7 @@ int run_study(Args& args) {
     plot.diameter.push_back(d_um);
     plot.value.push_back(a.mean);
     plot.error.push_back(a.standard_error);
+    measured_hd.push_back(a.discharge_hematocrit ? pries_relative_viscosity(d_um, *a.discharge_hematocrit) : -1.0);
     hematocrit_sum += ht;
     std::printf("%s: D = %.2f um, H_T = %.3f (H_D = %.3f): mu_eff = %.4f +- %.4f over t in [%.4g, %.4g] (%ld rows), "
                 "drift %+.2f%%; Pries %.4f; <grad p> fluctuation %.2f%%\n",
@@ -390,6 +394,10 @@ int run_study(Args& args) {
   std::snprintf(title, sizeof title, "Effective viscosity at tube hematocrit %.2f", ht);
   plot.title = title;
   plot.reference_name = "Pries et al. 1992";
+  if (std::none_of(measured_hd.begin(), measured_hd.end(), [](double v) { return v < 0; })) {
+    plot.reference_at_points = measured_hd;
+    plot.reference_at_points_name = "Pries at the measured H_D";
+  }
   plot_study(plot, fs::path(out) / "study.png");
   if (!profiles.names.empty()) plot_curves(profiles, fs::path(out) / "radial_hematocrit.png");
   std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());

@@ -21,9 +21,11 @@ double mean_of(const std::vector<double>& v, std::size_t begin, std::size_t end)
   return s / static_cast<double>(end - begin);
 }
 
-// The mean (or the largest, with `largest`) of a column over the rows with time >= from; empty
-// when the column is missing or any of those rows has no value.
-std::optional<double> column_summary(const CsvTable& table, const std::string& name, double from, bool largest) {
+enum class Summary { mean, largest, smallest };
+
+// The mean, largest or smallest value of a column over the rows with time >= from; empty when
+// the column is missing or any of those rows has no value.
+std::optional<double> column_summary(const CsvTable& table, const std::string& name, double from, Summary how) {
   const auto it = std::find(table.columns.begin(), table.columns.end(), name);
   if (it == table.columns.end()) return std::nullopt;
   const std::size_t col = static_cast<std::size_t>(it - table.columns.begin()), time = table.column("time");
@@ -34,7 +36,9 @@ std::optional<double> column_summary(const CsvTable& table, const std::string& n
     v.push_back(std::strtod(row[col].c_str(), nullptr));
   }
   if (v.empty()) return std::nullopt;
-  return largest ? *std::max_element(v.begin(), v.end()) : mean_of(v, 0, v.size());
+  if (how == Summary::largest) return *std::max_element(v.begin(), v.end());
+  if (how == Summary::smallest) return *std::min_element(v.begin(), v.end());
+  return mean_of(v, 0, v.size());
 }
 
 }  // namespace
@@ -73,10 +77,11 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
   if (n >= 2) a.drift = (mean_of(viscosity, n - n / 2, n) - mean_of(viscosity, 0, n / 2)) / a.mean;
   const double g = mean_of(gradient, 0, n);
   a.pressure_gradient = g;
-  a.tube_velocity = column_summary(table, "tube_velocity", a.from_time, false);
-  a.discharge_hematocrit = column_summary(table, "discharge_hematocrit", a.from_time, false);
-  a.max_area_strain = column_summary(table, "max_area_strain", a.from_time, true);
-  a.cell_free_layer = column_summary(table, "cell_free_layer", a.from_time, false);
+  a.tube_velocity = column_summary(table, "tube_velocity", a.from_time, Summary::mean);
+  a.discharge_hematocrit = column_summary(table, "discharge_hematocrit", a.from_time, Summary::mean);
+  a.max_area_strain = column_summary(table, "max_area_strain", a.from_time, Summary::largest);
+  a.cell_free_layer = column_summary(table, "cell_free_layer", a.from_time, Summary::mean);
+  a.min_wall_gap = column_summary(table, "min_wall_gap", a.from_time, Summary::smallest);
   const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
   a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;
   return a;

@@ -20,8 +20,9 @@ struct SteadyAverage {
   double pressure_gradient_fluctuation = 0;  // (max - min) / |mean| of <dp/ds> along the axis
   double pressure_gradient = 0;              // mean <dp/ds> along the axis
   // Means over the same rows of the tube's measured flow (empty where diagnostics.csv has no
-  // value: runs before these columns, or no cells), and the largest local area strain.
-  std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain, cell_free_layer;
+  // value: runs before these columns, or no cells), the largest local area strain and the
+  // closest approach of a cell to the wall.
+  std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain, cell_free_layer, min_wall_gap;
 };
 
 // Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file

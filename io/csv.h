@@ -39,6 +39,7 @@ struct DiagnosticsRow {
   std::optional<double> discharge_hematocrit;
   std::optional<double> max_area_strain;
   std::optional<double> cell_free_layer;  // a tube or constriction with cells (cell_free_layer.h)
+  std::optional<double> min_wall_gap;     // a wall and cells: closest approach of a cell to it
 };
 
 struct CellRow {

@@ -97,6 +97,10 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
                        {s.value[i] - s.error[i], s.value[i] + s.error[i]}, blue, 2.0f);
     bar->SetLegendVisibility(false);
   }
+  if (!s.reference_at_points.empty()) {
+    vtkPlot* crosses = add(chart, vtkChart::POINTS, s.reference_at_points_name, s.diameter, s.reference_at_points, black, 2.0f);
+    if (auto* p = vtkPlotPoints::SafeDownCast(crosses)) p->SetMarkerStyle(vtkPlotPoints::CROSS);
+  }
   vtkPlot* points = add(chart, vtkChart::POINTS, "simulation", s.diameter, s.value, blue, 3.0f);
   // Headroom above the data and the band for the legend (top right), so that it hides no point.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -105,6 +109,7 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
     lo = std::min(lo, s.value[i] - e);
     hi = std::max(hi, s.value[i] + e);
   }
+  for (double v : s.reference_at_points) lo = std::min(lo, v), hi = std::max(hi, v);
   for (double v : s.reference_low) lo = std::min(lo, v);
   for (double v : s.reference_high) hi = std::max(hi, v);
   if (lo < hi) {

@@ -13,6 +13,10 @@ struct StudyPlot {
   std::vector<double> diameter, value, error;  // the measured points (error: +- one bar)
   std::vector<double> reference_diameter, reference, reference_low, reference_high;
   std::string reference_name = "reference";
+  // The reference at each point's own condition (the Pries law at the run's measured H_D),
+  // drawn as crosses at the points' diameters; empty: none.
+  std::vector<double> reference_at_points;
+  std::string reference_at_points_name;
 };
 
 // Writes `png` atomically; throws std::runtime_error when there is no display or it cannot.

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -54,6 +55,29 @@ WallDistance::Query WallDistance::closest(const Eigen::Vector3d& x) const {
   q.normal = n;
   q.signed_distance = (wrapped - c.point).dot(n) >= 0 ? c.distance : -c.distance;
   return q;
+}
+
+double smallest_wall_distance(const WallDistance& wall, const std::vector<Eigen::MatrixX3d>& point_sets) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Eigen::MatrixX3d& points : point_sets) {
+    if (points.rows() == 0) continue;
+    const Eigen::Vector3d centre = points.colwise().mean().transpose();
+    const double radius = (points.rowwise() - centre.transpose()).rowwise().norm().maxCoeff();
+    const double at_centre = wall.closest(centre).signed_distance;
+    if (at_centre - radius >= smallest) continue;
+    Eigen::Vector3d anchor = centre;
+    double anchor_distance = at_centre;
+    for (Eigen::Index p = 0; p < points.rows(); ++p) {
+      const Eigen::Vector3d x = points.row(p).transpose();
+      // Distance to the wall is 1-Lipschitz: no smaller than the anchor's less the step.
+      if (anchor_distance - (x - anchor).norm() >= smallest) continue;
+      const double d = wall.closest(x).signed_distance;
+      smallest = std::min(smallest, d);
+      anchor = x;
+      anchor_distance = d;
+    }
+  }
+  return smallest;
 }
 
 double lumen_volume(const VesselMesh& wall) {

@@ -5,6 +5,7 @@
 // wrapped into the box first, so that points anywhere (cells are not wrapped) get the distance
 // to the nearest periodic image of the wall.
 #include <Eigen/Core>
+#include <vector>
 
 #include "geometry/cgal/aabb_tree.h"
 #include "geometry/vessel/vessel_mesh.h"
@@ -29,6 +30,13 @@ class WallDistance {
   TriangleMesh images_;  // unwrapped triangles and their periodic copies
   TriangleAabbTree tree_;
 };
+
+// The smallest signed distance from `wall` of the points of any of the sets (each cell's grid
+// points): how close the cells come to the wall (negative: through it). A set whose centre is
+// farther from the wall than the smallest so far plus the set's radius is skipped, and so is a
+// point within that margin of the last point queried (the ball about a point at distance d from
+// the wall holds no wall): the same minimum with few queries. +infinity without points.
+double smallest_wall_distance(const WallDistance& wall, const std::vector<Eigen::MatrixX3d>& point_sets);
 
 // Volume of the lumen enclosed by `wall` (one period along its periodic axes): the divergence
 // theorem with the field x_k / K over the K non-periodic axes k, whose flux through the cut

@@ -37,7 +37,8 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
-    if (options_.collision_threshold > 0) wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
+    if (options_.collision_threshold > 0 || !cells_.empty())
+      wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
     if (options_.tube_velocity && !options_.tube) {
       throw std::invalid_argument("CellStepper: a tube velocity needs the tube's section");
     }
@@ -310,6 +311,11 @@ StepReport CellStepper::advance(const FlowSolution& s) {
     report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
   report.tube_velocity = s.tube_velocity;
   if (s.tube_velocity && !cells_.empty()) report.discharge_hematocrit = discharge_hematocrit(s);
+  if (wall_distance_ && !cells_.empty()) {
+    std::vector<Eigen::MatrixX3d> points;
+    for (const Cell& c : cells_) points.push_back(grids_->n_grid->synthesize(c.shape.coeffs()));
+    report.min_wall_gap = smallest_wall_distance(*wall_distance_, points);
+  }
   if (options_.tube && !cells_.empty()) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);

@@ -87,6 +87,9 @@ struct StepReport {
   // hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged over the period, cell_flux.h).
   std::optional<double> tube_velocity, discharge_hematocrit;
   std::optional<double> cell_free_layer;  // with cells in the tube section's tube (cell_free_layer.h)
+  // With a wall and cells: the smallest distance of a cell's grid point from the wall, before
+  // the step (negative: through it). Against the wall's element size: is the gap resolved?
+  std::optional<double> min_wall_gap;
   // Collision removal (section 11.2), when h_s > 0: cell pairs (periodic images included) and
   // cells at the wall found closer than h_s, and the largest displacement of a grid point.
   int collision_pairs = 0;

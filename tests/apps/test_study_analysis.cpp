@@ -101,16 +101,19 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
   {
     CsvWriter csv(path, {"step", "time", "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z",
                          "effective_viscosity", "tube_velocity", "discharge_hematocrit", "max_area_strain",
-                         "cell_free_layer"});
+                         "cell_free_layer", "min_wall_gap"});
     for (int i = 1; i <= 100; ++i) {
       // Linear in i: the mean over i = 50..100 is the value at i = 75.
       csv.write({std::to_string(i), csv_number(0.01 * i), "0", "0", "-40", "1.5", csv_number(2.0 + 0.01 * i),
-                 csv_number(0.25 + 0.001 * i), csv_number(i % 7 == 0 ? 0.03 : 0.01), "0.5"});
+                 csv_number(0.25 + 0.001 * i), csv_number(i % 7 == 0 ? 0.03 : 0.01), "0.5",
+                 csv_number(i == 20 ? 0.01 : i == 60 ? 0.05 : 0.2)});
     }
   }
   const cli::SteadyAverage a = cli::steady_average(path, 2, 0.5);
   ASSERT_TRUE(a.tube_velocity && a.discharge_hematocrit && a.max_area_strain && a.cell_free_layer);
   EXPECT_EQ(*a.cell_free_layer, 0.5);
+  ASSERT_TRUE(a.min_wall_gap);
+  EXPECT_EQ(*a.min_wall_gap, 0.05);  // the smallest in the steady rows (0.01 at i = 20 is before them)
   EXPECT_NEAR(*a.tube_velocity, 2.75, 1e-12);
   EXPECT_NEAR(*a.discharge_hematocrit, 0.325, 1e-12);
   EXPECT_EQ(*a.max_area_strain, 0.03);
@@ -119,6 +122,6 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
 
   const fs::path old = write_diagnostics("without_measured", 10, [](int) { return 1.25; }, [](int) { return -40.0; });
   const cli::SteadyAverage b = cli::steady_average(old, 2, 0.5);
-  EXPECT_FALSE(b.tube_velocity || b.discharge_hematocrit || b.max_area_strain || b.cell_free_layer);
+  EXPECT_FALSE(b.tube_velocity || b.discharge_hematocrit || b.max_area_strain || b.cell_free_layer || b.min_wall_gap);
   fs::remove(old);
 }
