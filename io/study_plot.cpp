@@ -58,17 +58,23 @@ vtkNew<vtkContextView> chart_view(const std::filesystem::path& png, int width, i
   return view;
 }
 
+// A chart with a legend in `view`, titled, its axes named.
+vtkChartXY* add_chart(vtkContextView* view, const std::string& title, const std::string& x, const std::string& y) {
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetTitle(title);
+  chart->GetTitleProperties()->SetFontSize(16);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(x);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(y);
+  chart->SetShowLegend(true);
+  return chart;  // the scene holds it
+}
+
 }  // namespace
 
 void plot_curves(const CurvesPlot& c, const std::filesystem::path& png, int width, int height) {
   vtkNew<vtkContextView> view = chart_view(png, width, height);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle(c.title);
-  chart->GetTitleProperties()->SetFontSize(16);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(c.x_title);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle(c.y_title);
-  chart->SetShowLegend(true);
+  vtkChartXY* chart = add_chart(view, c.title, c.x_title, c.y_title);
   static const unsigned char palette[6][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
                                               {214, 39, 40},  {148, 103, 189}, {140, 86, 75}};
   for (std::size_t k = 0; k < c.names.size(); ++k) add(chart, vtkChart::LINE, c.names[k], c.x[k], c.y[k], palette[k % 6], 2.0f);
@@ -77,13 +83,7 @@ void plot_curves(const CurvesPlot& c, const std::filesystem::path& png, int widt
 
 void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width, int height) {
   vtkNew<vtkContextView> view = chart_view(png, width, height);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle(s.title);
-  chart->GetTitleProperties()->SetFontSize(16);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("tube diameter D (um)");
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("effective viscosity mu_eff / mu");
-  chart->SetShowLegend(true);
+  vtkChartXY* chart = add_chart(view, s.title, "tube diameter D (um)", "effective viscosity mu_eff / mu");
   static const unsigned char grey[3] = {150, 150, 150}, black[3] = {40, 40, 40}, blue[3] = {31, 119, 180};
   if (!s.reference_diameter.empty()) {
     add(chart, vtkChart::LINE, s.reference_name, s.reference_diameter, s.reference, black, 2.0f);
