@@ -37,7 +37,7 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
-    if (options_.collision_threshold > 0 || !cells_.empty())
+    if (options_.collision_threshold > 0 || !cells_.empty())  // collisions; the cells' gap to the wall
       wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
     if (options_.tube_velocity && !options_.tube) {
       throw std::invalid_argument("CellStepper: a tube velocity needs the tube's section");
@@ -290,10 +290,8 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   }
 }
 
-double CellStepper::discharge_hematocrit(const FlowSolution& s) const {
+double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {
   const int a = options_.tube->axis;
-  std::vector<SHSurface> shapes;
-  for (const Cell& c : cells_) shapes.push_back(c.shape);
   const double radius = options_.tube->radius;
   const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
   return cells_volume_flux(shapes, s.velocity, *grids_->n_grid, a) / (options_.domain.box->lengths()[a] * tube_flux);
@@ -310,17 +308,19 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   for (const MembraneState& m : s.membrane)
     report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
   report.tube_velocity = s.tube_velocity;
-  if (s.tube_velocity && !cells_.empty()) report.discharge_hematocrit = discharge_hematocrit(s);
-  if (wall_distance_ && !cells_.empty()) {
-    std::vector<Eigen::MatrixX3d> points;
-    for (const Cell& c : cells_) points.push_back(grids_->n_grid->synthesize(c.shape.coeffs()));
-    report.min_wall_gap = smallest_wall_distance(*wall_distance_, points);
-  }
-  if (options_.tube && !cells_.empty()) {
+  if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
     std::vector<SHSurface> shapes;
-    for (const Cell& c : cells_) shapes.push_back(c.shape);
-    report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
-                                             options_.domain.box->lengths()[options_.tube->axis]);
+    std::vector<Eigen::MatrixX3d> points;
+    for (const Cell& c : cells_) {
+      shapes.push_back(c.shape);
+      points.push_back(grids_->n_grid->synthesize(c.shape.coeffs()));
+    }
+    report.min_wall_gap = smallest_wall_distance(*wall_distance_, points);
+    if (s.tube_velocity) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
+    if (options_.tube) {
+      report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
+                                               options_.domain.box->lengths()[options_.tube->axis]);
+    }
   }
   if (!cells_.empty()) move_cells(s, report);
   state_.oldest_velocity = std::move(state_.older_velocity);

@@ -149,8 +149,9 @@ class CellStepper {
  private:
   void archive_wall(StateArchive& a) const;
   void enforce_volume(int c);
-  // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity).
-  double discharge_hematocrit(const FlowSolution& s) const;
+  // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
+  // cells' current shapes.
+  double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const;
   // X^{n+1}, collision removal and the volume constraint (advance() with cells).
   void move_cells(const FlowSolution& s, StepReport& report);
   int points_per_cell() const { return grids_ ? static_cast<int>(grids_->n_grid->grid().size()) : 0; }
@@ -159,7 +160,7 @@ class CellStepper {
   std::shared_ptr<const CellGrids> grids_;
   CellStepperOptions options_;
   std::unique_ptr<WallCoupling> wall_;
-  std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall
+  std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall; min_wall_gap
   std::optional<TubeFlowMeter> tube_meter_;      // with options_.tube
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // the cells' SPME grids
   StepperState state_;
