@@ -73,6 +73,8 @@ void print_vessel(const Scenario& s) {
   std::printf("vessel:  %s along %s", to_string(v.kind).c_str(), axis_name(v.axis));
   if (v.kind == VesselKind::file) {
     std::printf(", %s (scale %g)", v.path.string().c_str(), v.scale);
+  } else if (v.kind == VesselKind::network) {
+    std::printf(", %zu segments", v.segments.size());
   } else {
     std::printf(", D = %g (%.3g um)", v.diameter, PhysicalUnits(c.units).micrometres(v.diameter));
   }

@@ -19,7 +19,7 @@ using Vec3 = std::array<double, 3>;
 
 enum class DomainKind { periodic, free };
 enum class FlowKind { none, shear, extensional };
-enum class VesselKind { tube, constriction, bifurcation, file };
+enum class VesselKind { tube, constriction, bifurcation, file, network };
 enum class CellShape { rbc, sphere, ellipsoid };
 // How cells start in a tube narrower than the cell: stretched edge-on, or folded face-on into
 // parachutes (geometry/contact/cell_placement.h).
@@ -52,6 +52,13 @@ struct CaseDomain {
   bool operator==(const CaseDomain&) const = default;
 };
 
+// A straight segment of a network vessel (box coordinates).
+struct CaseSegment {
+  Vec3 from{}, to{};
+  double diameter = 0;
+  bool operator==(const CaseSegment&) const = default;
+};
+
 struct CaseVessel {
   VesselKind kind = VesselKind::tube;
   double diameter = 0;  // tube; constriction away from the neck; bifurcation: the parent
@@ -67,6 +74,8 @@ struct CaseVessel {
   // folder); its coordinates are multiplied by `scale`.
   std::filesystem::path path;
   double scale = 1.0;
+  // network: straight segments; shared end points are junctions (geometry/vessel/network.h).
+  std::vector<CaseSegment> segments;
   bool operator==(const CaseVessel&) const = default;
 };
 

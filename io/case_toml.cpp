@@ -225,6 +225,9 @@ class Table {
     return x;
   }
 
+  // A table inside one of this table's values (an element of an array of tables).
+  Table nested(const toml::value& v, const std::string& key) const { return Table(v, key_name(key), *ctx_); }
+
   std::optional<Table> table(const std::string& key) {
     const toml::value* v = get(key);
     if (!v) return std::nullopt;
@@ -307,6 +310,31 @@ CaseDomain read_domain(Table& top) {
   return d;
 }
 
+// [vessel] segments = [{ from = [x, y, z], to = [x, y, z], diameter = d }, ...]; the geometry
+// (junctions, overlaps, the box) is checked where the network is built.
+std::vector<CaseSegment> read_segments(Table& t) {
+  const toml::value* list = t.get("segments");
+  if (!list) t.fail_table("segments = [{ from = [x, y, z], to = [x, y, z], diameter = d }, ...] is required for kind = \"network\"");
+  const auto& a = t.to_array("segments", *list, 0, "an array of { from, to, diameter } tables");
+  if (a.empty()) t.fail("segments", "the list is empty");
+  std::vector<CaseSegment> segments;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string key = "segments[" + std::to_string(i) + "]";
+    if (!a[i].is_table()) t.fail_value(a[i], key, "expected a table { from, to, diameter }, got " + type_name(a[i]));
+    Table g = t.nested(a[i], key);
+    CaseSegment segment;
+    const auto from = g.vec3("from", any_finite()), to = g.vec3("to", any_finite());
+    const auto diameter = g.optional_real("diameter", positive());
+    if (!from || !to || !diameter) g.fail_table("from, to and diameter are required");
+    segment.from = *from;
+    segment.to = *to;
+    segment.diameter = *diameter;
+    g.finish();
+    segments.push_back(segment);
+  }
+  return segments;
+}
+
 std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs::path& base) {
   auto t = top.table("vessel");
   if (!t) return std::nullopt;
@@ -316,7 +344,8 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
                                  {{"tube", VesselKind::tube},
                                   {"constriction", VesselKind::constriction},
                                   {"bifurcation", VesselKind::bifurcation},
-                                  {"file", VesselKind::file}});
+                                  {"file", VesselKind::file},
+                                  {"network", VesselKind::network}});
   v.axis = t->choice<int>("axis", 2, {{"x", 0}, {"y", 1}, {"z", 2}});
   const double length = d.box[v.axis];
   const double cross = std::min(d.box[(v.axis + 1) % 3], d.box[(v.axis + 2) % 3]);
@@ -343,7 +372,19 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
     return v;
   }
 
+  if (v.kind == VesselKind::network) {
+    t->reject({"diameter", "center"}, "kind = \"tube\", \"constriction\" or \"bifurcation\"");
+    t->reject(constriction_keys, "kind = \"constriction\"");
+    t->reject(bifurcation_keys, "kind = \"bifurcation\"");
+    t->reject(file_keys, "kind = \"file\"");
+    v.segments = read_segments(*t);
+    v.element_size = t->real("element_size", v.element_size, open_closed(0, cross / 2));
+    t->finish();
+    return v;
+  }
+
   t->reject(file_keys, "kind = \"file\"");
+  t->reject({"segments"}, "kind = \"network\"");
   const auto diameter = t->optional_real("diameter", open(0, cross));
   if (!diameter) t->fail_table("diameter is required for kind = \"" + to_string(v.kind) + "\"");
   v.diameter = *diameter;

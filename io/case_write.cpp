@@ -98,6 +98,12 @@ void write_vessel(Writer& w, const CaseVessel& v) {
   if (v.kind == VesselKind::file) {
     w.text("path", v.path.string());
     w.key("scale", v.scale);
+  } else if (v.kind == VesselKind::network) {
+    std::string segments = "[\n";
+    for (const CaseSegment& g : v.segments)
+      segments.append("  { from = ").append(vec(g.from)).append(", to = ").append(vec(g.to))
+          .append(", diameter = ").append(real(g.diameter)).append(" },\n");
+    w.key("segments", segments.append("]"));
   } else {
     w.key("diameter", v.diameter);
   }
@@ -280,6 +286,7 @@ std::string to_string(VesselKind k) {
     case VesselKind::constriction: return "constriction";
     case VesselKind::bifurcation: return "bifurcation";
     case VesselKind::file: return "file";
+    case VesselKind::network: return "network";
   }
   return "";
 }

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "geometry/vessel/network.h"
 #include "geometry/vessel/vessel.h"
 
 namespace rbcflow {
@@ -47,6 +48,14 @@ VesselMesh build(const Case& c) {
       s.element_size = v.element_size;
       return vessel_file(s);
     }
+    case VesselKind::network: {
+      NetworkSpec s;
+      for (const CaseSegment& g : v.segments) s.segments.push_back({to_eigen(g.from), to_eigen(g.to), g.diameter});
+      s.axis = v.axis;
+      s.box = to_eigen(c.domain.box);
+      s.element_size = v.element_size;
+      return network(s);
+    }
   }
   throw std::logic_error("build_vessel: unknown vessel kind");
 }
@@ -58,7 +67,9 @@ VesselMesh build_vessel(const Case& c) {
   try {
     return build(c);
   } catch (const std::exception& e) {
-    throw case_error(c, c.vessel->kind == VesselKind::file ? "vessel.path" : "vessel", e.what());
+    const VesselKind kind = c.vessel->kind;
+    throw case_error(c, kind == VesselKind::file ? "vessel.path" : kind == VesselKind::network ? "vessel.segments" : "vessel",
+                     e.what());
   }
 }
 

@@ -454,3 +454,34 @@ TEST(Case, EveryExampleCaseReadsAndRoundTrips) {
   EXPECT_GE(cases, 7);
   fs::remove_all(out);
 }
+
+// A network's segments are read as a list of { from, to, diameter } tables; each error names the
+// segment's key and line (the geometry is checked where the network is built).
+TEST(Case, NetworkSegmentsAreRead) {
+  const std::string network = "[vessel]\nkind = \"network\"\nsegments = [\n"
+                              "  { from = [5, 5, 0], to = [5, 5, 5], diameter = 3 },\n"
+                              "  { from = [5, 5, 5], to = [5, 5, 10], diameter = 2.5 },\n]\n";
+  const Case c = parse_case(minimal(network), "net.toml");
+  ASSERT_TRUE(c.vessel);
+  EXPECT_EQ(c.vessel->kind, VesselKind::network);
+  ASSERT_EQ(c.vessel->segments.size(), 2u);
+  EXPECT_EQ(c.vessel->segments[1].from, (Vec3{5, 5, 5}));
+  EXPECT_EQ(c.vessel->segments[1].diameter, 2.5);
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\n")),
+            "bad.toml:4: [vessel]: segments = [{ from = [x, y, z], to = [x, y, z], diameter = d }, ...] is required "
+            "for kind = \"network\"");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\nsegments = [{ from = [1, 1, 0], to = [1, 1, 2] }]\n")),
+            "bad.toml:6: [vessel.segments[0]]: from, to and diameter are required");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\nsegments = [\n{ from = [1, 1, 0], to = [1, 1, 2], "
+                             "diameter = 1 },\n{ from = [1, 1], to = [1, 1, 2], diameter = 1 }]\n")),
+            "bad.toml:8: vessel.segments[1].from: expected an array of 3 numbers, got 2 elements");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\nsegments = [{ from = [1, 1, 0], to = [1, 1, 2], "
+                             "diameter = 1, radius = 0.5 }]\n")),
+            "bad.toml:6: vessel.segments[0].radius: unknown key in [vessel.segments[0]]");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\nsegments = [3]\n")),
+            "bad.toml:6: vessel.segments[0]: expected a table { from, to, diameter }, got an integer");
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\ndiameter = 3\nsegments = []\n")),
+            "bad.toml:6: vessel.diameter: applies only to kind = \"tube\", \"constriction\" or \"bifurcation\"");
+  EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 3\nsegments = []\n")),
+            "bad.toml:6: vessel.segments: applies only to kind = \"network\"");
+}
