@@ -16,4 +16,9 @@ struct TriangleMesh {
 // triangles are oriented outward.
 double enclosed_volume(const TriangleMesh& mesh);
 
+// The winding number of a closed, outward-oriented mesh about x: the solid angle its triangles
+// subtend at x over 4 pi (Van Oosterom & Strackee 1983), 1 inside and 0 outside to rounding,
+// however the surface folds.
+double winding_number(const TriangleMesh& mesh, const Eigen::Vector3d& x);
+
 }  // namespace rbcflow

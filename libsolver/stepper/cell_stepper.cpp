@@ -51,6 +51,10 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
         options_.mean_velocity = Eigen::Vector3d::Unit(options_.tube->axis) * (*options_.tube_velocity / tube_meter_->ratio());
       }
     }
+    if (!options_.flux_sections.empty())
+      section_meter_ = std::make_unique<SectionFluxMeter>(*wall_, std::move(options_.flux_sections));
+  } else if (!options_.flux_sections.empty()) {
+    throw std::invalid_argument("CellStepper: flux sections need a vessel wall");
   } else if (options_.pressure_gradient) {
     throw std::invalid_argument("CellStepper: a prescribed pressure gradient needs a vessel wall to resist it");
   } else if (options_.tube || options_.tube_velocity) {
@@ -227,6 +231,13 @@ FlowSolution CellStepper::solve() const {
     if (what.find(" at step ") != std::string::npos) throw;
     throw std::runtime_error(what + at_step(step));
   }
+  if (section_meter_) {
+    std::vector<SHSurface> shapes;
+    for (const Cell& c : cells_) shapes.push_back(c.shape);
+    const CellsAtStep cells_now{layers.get(), &s.traction, &s.velocity, &shapes,
+                              nc > 0 ? grids_->n_grid.get() : nullptr, lambda};
+    s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
+  }
   total_timer.stop();
   if (layers) layers->report_memory(s.memory);
   if (at_wall) at_wall->report_memory(s.memory, "at wall:");
@@ -308,6 +319,7 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   for (const MembraneState& m : s.membrane)
     report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
   report.tube_velocity = s.tube_velocity;
+  report.section_flux = s.section_flux;
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
     std::vector<SHSurface> shapes;
     std::vector<Eigen::MatrixX3d> points;

@@ -22,6 +22,7 @@
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/section_flux.h"
 #include "libsolver/stepper/state_archive.h"
 #include "libsolver/stepper/step_timings.h"
 #include "libsolver/stepper/tube_drive.h"
@@ -40,6 +41,9 @@ struct CellStepperOptions {
   std::optional<Eigen::Vector3d> pressure_gradient;               // prescribed <grad p> instead
   std::optional<TubeSection> tube;        // a tube section: its mean velocity measured every step
   std::optional<double> tube_velocity;    // or that tube velocity held every step (needs `tube`)
+  // Branches whose volume flux is measured every step, each by its candidate cross-sections
+  // (section_flux.h; needs a wall).
+  std::vector<std::vector<SectionQuadrature>> flux_sections;
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background;  // free space: u_inf(x)
   double gmres_tolerance = 1e-6;
   int gmres_max_iterations = 100;
@@ -65,6 +69,7 @@ struct FlowSolution {
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();      // <u> used
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();  // (8); zero without a wall
   std::optional<double> tube_velocity;  // U through the options' tube section
+  std::vector<double> section_flux;     // through each of the options' flux_sections branches
   int gmres_cells = 0, gmres_wall = 0;
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
@@ -86,6 +91,7 @@ struct StepReport {
   // Through the options' tube section: the tube velocity U, and with cells the discharge
   // hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged over the period, cell_flux.h).
   std::optional<double> tube_velocity, discharge_hematocrit;
+  std::vector<double> section_flux;  // through the options' flux sections (FlowSolution's)
   std::optional<double> cell_free_layer;  // with cells in the tube section's tube (cell_free_layer.h)
   // With a wall and cells: the smallest distance of a cell's grid point from the wall, before
   // the step (negative: through it). Against the wall's element size: is the gap resolved?
@@ -162,6 +168,7 @@ class CellStepper {
   std::unique_ptr<WallCoupling> wall_;
   std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall; min_wall_gap
   std::optional<TubeFlowMeter> tube_meter_;      // with options_.tube
+  std::unique_ptr<SectionFluxMeter> section_meter_;  // with options_.flux_sections
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();  // the cells' SPME grids
   StepperState state_;
 };

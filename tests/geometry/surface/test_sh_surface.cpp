@@ -105,3 +105,17 @@ TEST(SHSurface, TriangulationIsClosedAndOutward) {
     EXPECT_LT((s.north_pole() - Eigen::Vector3d(0, 0, 0.5 * evans_fung_radius() * 0.207161)).norm(), 1e-12);
   }
 }
+
+// The winding number of the triangulation is 1 inside and 0 outside, also in the dimple of a
+// red cell (the centre, between the two faces 0.21 R apart) and just above it (in the hollow
+// of the dimple, outside).
+TEST(SHSurface, WindingNumberOfTheTriangulation) {
+  const SHTransform t = SHTransform::gauss(16);
+  const TriangleMesh mesh = make_biconcave(16).triangulate(t);
+  const double half = 0.5 * evans_fung_radius() * 0.207161;  // half the thickness at the centre
+  EXPECT_NEAR(winding_number(mesh, Eigen::Vector3d::Zero()), 1.0, 1e-12);
+  EXPECT_NEAR(winding_number(mesh, Eigen::Vector3d(0, 0, 0.8 * half)), 1.0, 1e-12);
+  EXPECT_NEAR(winding_number(mesh, Eigen::Vector3d(0, 0, 1.3 * half)), 0.0, 1e-12);
+  EXPECT_NEAR(winding_number(mesh, Eigen::Vector3d(0.9, 0.0, 0.0)), 1.0, 1e-12);  // in the rim
+  EXPECT_NEAR(winding_number(mesh, Eigen::Vector3d(2.0, 0.3, -0.1)), 0.0, 1e-12);
+}
