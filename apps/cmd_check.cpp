@@ -87,6 +87,23 @@ void print_vessel(const Scenario& s) {
   }
   std::printf("\n         meshed with element size %g: %d wall nodes, %d triangles; lumen volume %.4g\n",
               v.element_size, s.vessel->surface.num_points(), s.vessel->surface.num_triangles(), *s.lumen_volume);
+  if (s.branches.empty()) {
+    std::printf("         branches: not known for a vessel from a file (no branches.csv)\n");
+    return;
+  }
+  std::printf("         branches (branches.csv; flow %s):\n",
+              s.options.tube ? "pi a^2 U from the tube meter" : "through each branch's section clearest of the cells");
+  const char* names[] = {"parent", "daughter", "daughter"};
+  for (std::size_t b = 0; b < s.branches.size(); ++b) {
+    const VesselBranch& g = s.branches[b];
+    const Eigen::Vector3d n = g.direction();
+    Eigen::Vector3d x = g.centre();  // in the box
+    for (int d = 0; d < 3; ++d)
+      if (const double p = s.vessel->period[d]; p > 0) x[d] -= p * std::floor(x[d] / p);
+    std::printf("           %zu%s%s: D = %g, mid-section at [%.4g, %.4g, %.4g], flow along [%.3g, %.3g, %.3g]\n", b,
+                v.kind == VesselKind::bifurcation ? " " : "", v.kind == VesselKind::bifurcation ? names[b] : "",
+                2 * g.radius, x[0], x[1], x[2], n[0], n[1], n[2]);
+  }
 }
 
 void print_cells(const Scenario& s) {

@@ -107,6 +107,11 @@ const std::vector<std::string>& cells_columns() {
   return columns;
 }
 
+const std::vector<std::string>& branches_columns() {
+  static const std::vector<std::string> columns = {"step", "time", "branch", "flow_rate", "cells", "cells_passed"};
+  return columns;
+}
+
 CsvWriter::CsvWriter(fs::path path, std::vector<std::string> columns, std::optional<long> resume_step)
     : path_(std::move(path)), columns_(columns.size()), file_(nullptr, &std::fclose) {
   const std::string header = join(columns);
@@ -157,6 +162,16 @@ void CellsCsv::write(const std::vector<CellRow>& frame) {
     row.add(r.centroid).add(r.velocity).add(csv_number(r.volume)).add(csv_number(r.area));
     row.add(csv_number(r.taylor_deformation)).add(csv_number(r.inclination));
     csv_.write(row.fields);
+  }
+}
+
+BranchesCsv::BranchesCsv(const fs::path& path, std::optional<long> resume_step)
+    : csv_(path, branches_columns(), resume_step) {}
+
+void BranchesCsv::write(const std::vector<BranchRow>& rows) {
+  for (const BranchRow& r : rows) {
+    csv_.write({std::to_string(r.step), csv_number(r.time), std::to_string(r.branch), csv_number(r.flow_rate),
+                std::to_string(r.cells), std::to_string(r.cells_passed)});
   }
 }
 

@@ -54,8 +54,19 @@ struct CellRow {
   double inclination = 0;         // long axis to the flow direction, radians
 };
 
+// One branch of the vessel after a step (branches.csv).
+struct BranchRow {
+  long step = 0;
+  double time = 0;
+  int branch = 0;
+  double flow_rate = 0;   // volume flux through its mid cross-section, along the branch
+  int cells = 0;          // cells whose centroid is in the branch
+  long cells_passed = 0;  // centroids that crossed the mid-section along the branch, less those back
+};
+
 const std::vector<std::string>& diagnostics_columns();
 const std::vector<std::string>& cells_columns();
+const std::vector<std::string>& branches_columns();
 
 // A CSV file written row by row. A new file starts with the header. On a restart from step
 // S (resume_step = S), an existing file keeps its rows with step <= S (a run that went past
@@ -88,6 +99,15 @@ class CellsCsv {
  public:
   explicit CellsCsv(const std::filesystem::path& path, std::optional<long> resume_step = std::nullopt);
   void write(const std::vector<CellRow>& frame);  // one row per cell
+
+ private:
+  CsvWriter csv_;
+};
+
+class BranchesCsv {
+ public:
+  explicit BranchesCsv(const std::filesystem::path& path, std::optional<long> resume_step = std::nullopt);
+  void write(const std::vector<BranchRow>& rows);  // one row per branch
 
  private:
   CsvWriter csv_;

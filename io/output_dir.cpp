@@ -25,8 +25,9 @@ void check_output_dir(const Case& c, const fs::path& dir) {
 
 namespace {
 
-constexpr const char* kRunFiles[] = {"case.toml",   "diagnostics.csv", "cells.csv", "rbcflow.xdmf",   "rbcflow.h5",
-                                     "rbcflow.pvd", "diagnostics.png", "vtk",       "renders",        "checkpoints"};
+constexpr const char* kRunFiles[] = {"case.toml",    "diagnostics.csv", "cells.csv", "branches.csv",
+                                     "rbcflow.xdmf", "rbcflow.h5",      "rbcflow.pvd", "diagnostics.png",
+                                     "vtk",          "renders",         "checkpoints"};
 
 }  // namespace
 
@@ -80,7 +81,7 @@ std::optional<fs::path> carry_tables_from_checkpoint_run(const fs::path& checkpo
   std::error_code ec;
   if (!fs::is_directory(run, ec) || fs::equivalent(run, dir, ec) || ec) return std::nullopt;
   bool copied = false;
-  for (const char* table : {"diagnostics.csv", "cells.csv"}) {
+  for (const char* table : {"diagnostics.csv", "cells.csv", "branches.csv"}) {
     const fs::path from = run / table, to = dir / table;
     if (!fs::is_regular_file(from, ec) || fs::exists(to, ec)) continue;
     write_atomically(to, [&](const fs::path& tmp) {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "io/render.h"
 #include "io/vtk_series.h"
 #include "io/xdmf_writer.h"
+#include "scenario/branch_monitor.h"
 #include "scenario/checkpoint.h"
 #include "scenario/derived.h"
 #include "scenario/physical_units.h"
@@ -67,11 +69,34 @@ class Progress {
   Clock::time_point start_;
 };
 
+// The cells_passed of each branch in branches.csv's rows of `step` (a restart continues the
+// counts); zeros where the file or the rows are missing (a run of an earlier version).
+std::vector<long> passed_at(const fs::path& path, long step, std::size_t branches) {
+  std::vector<long> passed(branches, 0);
+  if (!fs::exists(path)) return passed;
+  const CsvTable t = read_csv(path);
+  const std::size_t s = t.column("step"), b = t.column("branch"), p = t.column("cells_passed");
+  for (const auto& row : t.rows) {
+    if (std::stol(row[s]) != step) continue;
+    const std::size_t i = std::stoul(row[b]);
+    if (i < branches) passed[i] = std::stol(row[p]);
+  }
+  return passed;
+}
+
 class RunOutput {
  public:
-  RunOutput(const Case& c, std::optional<long> resume)
+  RunOutput(const Case& c, const Scenario& s, const CellStepper& stepper, std::optional<long> resume)
       : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
     if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
+    if (!s.branches.empty()) {
+      branches_csv_.emplace(dir_ / "branches.csv", resume);
+      const std::vector<long> passed = resume ? passed_at(dir_ / "branches.csv", *resume, s.branches.size()) : std::vector<long>{};
+      const std::optional<double> tube_area =
+          s.options.tube ? std::optional<double>(std::numbers::pi * s.options.tube->radius * s.options.tube->radius)
+                         : std::nullopt;
+      branches_.emplace(s.branches, s.vessel->period, tube_area, cell_centroids(stepper), passed);
+    }
     if (c.output.xdmf) xdmf_.emplace(dir_, resume);
     if (c.output.vtk) vtk_.emplace(dir_, resume);
   }
@@ -95,11 +120,18 @@ class RunOutput {
 
   DiagnosticsCsv& diagnostics() { return diagnostics_; }
 
+  // branches.csv after a step (a vessel with known branches).
+  void branches(const CellStepper& stepper, const StepReport& report) {
+    if (branches_) branches_csv_->write(branches_->update(stepper.steps(), stepper.time(), report, cell_centroids(stepper)));
+  }
+
  private:
   const Case& case_;
   fs::path dir_;
   DiagnosticsCsv diagnostics_;
   std::optional<CellsCsv> cells_csv_;
+  std::optional<BranchesCsv> branches_csv_;
+  std::optional<BranchMonitor> branches_;
   std::optional<XdmfWriter> xdmf_;
   std::optional<VtkSeriesWriter> vtk_;
   RenderOptions render_;
@@ -171,7 +203,7 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
     }
   }
   write_case_toml(c, c.output.dir / "case.toml");
-  r.output.emplace(c, r.resume);
+  r.output.emplace(c, r.scenario, stepper, r.resume);
   r.progress.emplace(quiet, r.first, r.last);
 }
 
@@ -204,6 +236,7 @@ void Run::step() {
     const StepReport report = stepper.advance(s);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.output->diagnostics().write(diagnostics_row(stepper, report, r.scenario, seconds));
+    r.output->branches(stepper, report);
     if (report.max_volume_error > kMaxVolumeError) {
       char what[160];
       std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * report.max_volume_error,

@@ -119,6 +119,10 @@ Scenario prepare_scenario(const Case& c) {
     s.vessel = build_vessel(c);
     s.lumen_volume = lumen_volume(*s.vessel);
     if (c.vessel->kind == VesselKind::tube) s.tube_radius = 0.5 * c.vessel->diameter;
+    s.branches = vessel_branches(c);
+    // A tube's or constriction's flow is its meter's; other vessels' is measured per branch.
+    if (!s.options.tube)
+      for (const VesselBranch& b : s.branches) s.options.flux_sections.push_back(candidate_sections(b));
   }
   const long wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;
   if (!c.cells) {

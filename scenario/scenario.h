@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/vessel/vessel_branch.h"
 #include "geometry/vessel/vessel_mesh.h"
 #include "io/case.h"
 #include "libsolver/spme/ewald_parameters.h"
@@ -34,6 +35,7 @@ struct Scenario {
   CellStepperOptions options;              // the wall's elements are added by make_stepper
   long steps = 0;                          // to reach time.end
   std::optional<double> tube_radius;       // a straight tube: for (45)-(46)
+  std::vector<VesselBranch> branches;      // of the vessel (vessel.h), for branches.csv
   std::optional<double> tube_hematocrit;   // the cells' volume over the lumen's, with a vessel
   std::optional<std::string> placement_note;  // cells placed pre-deformed: how
   std::vector<EwaldSum> ewald;             // in a periodic domain

@@ -4,6 +4,7 @@
 
 #include "geometry/vessel/network.h"
 #include "geometry/vessel/vessel.h"
+#include "geometry/vessel/vessel_branches.h"
 
 namespace rbcflow {
 namespace {
@@ -19,26 +20,39 @@ TubeSpec tube_spec(const Case& c) {
   return t;
 }
 
+ConstrictionSpec constriction_spec(const Case& c) {
+  ConstrictionSpec s;
+  s.tube = tube_spec(c);
+  s.depth = c.vessel->depth;
+  s.width = c.vessel->width;
+  s.centre = c.vessel->center;
+  return s;
+}
+
+BifurcationSpec bifurcation_spec(const Case& c) {
+  BifurcationSpec s;
+  s.tube = tube_spec(c);
+  s.daughter_diameters = c.vessel->daughter_diameters;
+  s.angle_deg = c.vessel->angle_deg;
+  s.centre = c.vessel->center;
+  return s;
+}
+
+NetworkSpec network_spec(const Case& c) {
+  NetworkSpec s;
+  for (const CaseSegment& g : c.vessel->segments) s.segments.push_back({to_eigen(g.from), to_eigen(g.to), g.diameter});
+  s.axis = c.vessel->axis;
+  s.box = to_eigen(c.domain.box);
+  s.element_size = c.vessel->element_size;
+  return s;
+}
+
 VesselMesh build(const Case& c) {
   const CaseVessel& v = *c.vessel;
   switch (v.kind) {
     case VesselKind::tube: return tube(tube_spec(c));
-    case VesselKind::constriction: {
-      ConstrictionSpec s;
-      s.tube = tube_spec(c);
-      s.depth = v.depth;
-      s.width = v.width;
-      s.centre = v.center;
-      return constriction(s);
-    }
-    case VesselKind::bifurcation: {
-      BifurcationSpec s;
-      s.tube = tube_spec(c);
-      s.daughter_diameters = v.daughter_diameters;
-      s.angle_deg = v.angle_deg;
-      s.centre = v.center;
-      return bifurcation(s);
-    }
+    case VesselKind::constriction: return constriction(constriction_spec(c));
+    case VesselKind::bifurcation: return bifurcation(bifurcation_spec(c));
     case VesselKind::file: {
       VesselFileSpec s;
       s.path = v.path.string();
@@ -48,14 +62,7 @@ VesselMesh build(const Case& c) {
       s.element_size = v.element_size;
       return vessel_file(s);
     }
-    case VesselKind::network: {
-      NetworkSpec s;
-      for (const CaseSegment& g : v.segments) s.segments.push_back({to_eigen(g.from), to_eigen(g.to), g.diameter});
-      s.axis = v.axis;
-      s.box = to_eigen(c.domain.box);
-      s.element_size = v.element_size;
-      return network(s);
-    }
+    case VesselKind::network: return network(network_spec(c));
   }
   throw std::logic_error("build_vessel: unknown vessel kind");
 }
@@ -71,6 +78,18 @@ VesselMesh build_vessel(const Case& c) {
     throw case_error(c, kind == VesselKind::file ? "vessel.path" : kind == VesselKind::network ? "vessel.segments" : "vessel",
                      e.what());
   }
+}
+
+std::vector<VesselBranch> vessel_branches(const Case& c) {
+  if (!c.vessel) return {};
+  switch (c.vessel->kind) {
+    case VesselKind::tube: return tube_branches(tube_spec(c));
+    case VesselKind::constriction: return constriction_branches(constriction_spec(c));
+    case VesselKind::bifurcation: return bifurcation_branches(bifurcation_spec(c));
+    case VesselKind::network: return network_branches(network_spec(c));
+    case VesselKind::file: return {};
+  }
+  return {};
 }
 
 }  // namespace rbcflow

@@ -54,4 +54,24 @@ SectionQuadrature section_quadrature(const VesselBranch& branch, int radial, int
   return q;
 }
 
+std::vector<SectionQuadrature> candidate_sections(const VesselBranch& branch, int count) {
+  const double a = branch.clear_from, b = branch.clear_to;
+  if (count < 2 || b <= a) {
+    VesselBranch mid = branch;
+    const double t = 0.5 * (a + b);
+    mid.from = branch.from + (t - 0.5) * (branch.to - branch.from);
+    mid.to = branch.to + (t - 0.5) * (branch.to - branch.from);
+    return {section_quadrature(mid)};
+  }
+  std::vector<SectionQuadrature> sections;
+  for (int k = 0; k < count; ++k) {
+    const double t = a + (b - a) * k / (count - 1);
+    VesselBranch at = branch;  // the same line, its middle moved to t
+    at.from = branch.from + (t - 0.5) * (branch.to - branch.from);
+    at.to = branch.to + (t - 0.5) * (branch.to - branch.from);
+    sections.push_back(section_quadrature(at));
+  }
+  return sections;
+}
+
 }  // namespace rbcflow

@@ -20,9 +20,21 @@ VesselBranch axis_branch(const TubeSpec& t, double start) {
           0.5 * t.diameter};
 }
 
+// The clear part of a branch of `length` whose ends are `margin_from` and `margin_to` from the
+// nearest cross-section that is its own; the middle where they overlap.
+void set_clear(VesselBranch& b, double length, double margin_from, double margin_to) {
+  b.clear_from = margin_from / length;
+  b.clear_to = 1 - margin_to / length;
+  if (b.clear_from > b.clear_to) b.clear_from = b.clear_to = 0.5 * (b.clear_from + b.clear_to);
+}
+
 }  // namespace
 
-std::vector<VesselBranch> tube_branches(const TubeSpec& spec) { return {axis_branch(spec, 0.0)}; }
+std::vector<VesselBranch> tube_branches(const TubeSpec& spec) {
+  VesselBranch b = axis_branch(spec, 0.0);
+  set_clear(b, spec.box[spec.axis], 0.0, 0.0);
+  return {b};
+}
 
 std::vector<VesselBranch> constriction_branches(const ConstrictionSpec& spec) {
   return {axis_branch(spec.tube, spec.centre)};
@@ -33,19 +45,33 @@ std::vector<VesselBranch> bifurcation_branches(const BifurcationSpec& spec) {
   const TubeSpec& t = spec.tube;
   const Eigen::Vector2d c = frame_centre(t);
   const double half = 0.5 * t.box[t.axis], split = spec.centre;
-  std::vector<VesselBranch> b{{box_point(t.axis, c[0], c[1], split - half), box_point(t.axis, c[0], c[1], split),
-                               0.5 * t.diameter}};
+  const double R = 0.5 * t.diameter;
+  std::vector<VesselBranch> b{{box_point(t.axis, c[0], c[1], split - half), box_point(t.axis, c[0], c[1], split), R}};
+  set_clear(b[0], half, 2 * R, 2 * R);  // clear of the junction spheres (radius R) and the daughters
   for (int i = 0; i < 2; ++i) {
     const double x = c[0] + (i == 0 ? 1 : -1) * l.offset;
     b.push_back({box_point(t.axis, x, c[1], split), box_point(t.axis, x, c[1], split + half),
                  0.5 * spec.daughter_diameters[i]});
+    const double bends = 0.5 * (half - l.parallel[i]);  // split and merge to the parallel part
+    set_clear(b.back(), half, bends, bends);
   }
   return b;
 }
 
 std::vector<VesselBranch> network_branches(const NetworkSpec& spec) {
+  const NetworkLayout layout = network_layout(spec);
   std::vector<VesselBranch> b;
-  for (const NetworkSegment& s : spec.segments) b.push_back({s.from, s.to, 0.5 * s.diameter});
+  for (int i = 0; i < static_cast<int>(spec.segments.size()); ++i) {
+    const NetworkSegment& s = spec.segments[i];
+    const double r = 0.5 * s.diameter;
+    b.push_back({s.from, s.to, r});
+    // Clear of each end's junction sphere and of the other segments' cylinders near it.
+    auto margin = [&](int node) {
+      const NetworkNode& n = layout.nodes[node];
+      return n.on_face ? 0.0 : n.sphere_radius + r;
+    };
+    set_clear(b.back(), (s.to - s.from).norm(), margin(layout.ends[i][0]), margin(layout.ends[i][1]));
+  }
   return b;
 }
 
