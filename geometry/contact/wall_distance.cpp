@@ -1,8 +1,11 @@
 #include "geometry/contact/wall_distance.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -39,7 +42,52 @@ TriangleMesh periodic_images(const VesselMesh& wall) {
 }  // namespace
 
 WallDistance::WallDistance(const VesselMesh& wall)
-    : period_(wall.period), images_(periodic_images(wall)), tree_(images_) {}
+    : period_(wall.period), triangles_(wall.surface.triangles), images_(periodic_images(wall)), tree_(images_) {
+  const int nt = wall.surface.num_triangles();
+  face_normals_.resize(nt, 3);
+  node_normals_ = Eigen::Matrix<double, Eigen::Dynamic, 3>::Zero(wall.surface.num_points(), 3);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Matrix3d v = triangle_vertices(wall, t);
+    const Eigen::Vector3d n = (v.col(1) - v.col(0)).cross(v.col(2) - v.col(0)).normalized();
+    face_normals_.row(t) = n.transpose();
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d e1 = v.col((a + 1) % 3) - v.col(a), e2 = v.col((a + 2) % 3) - v.col(a);
+      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      node_normals_.row(triangles_(t, a)) += angle * n.transpose();
+    }
+  }
+  // Edge a of a triangle joins its nodes a + 1 and a + 2; its pseudonormal adds the normal of
+  // the triangle across it.
+  std::map<std::pair<int, int>, std::pair<int, int>> edges;  // sorted nodes -> (triangle, edge)
+  edge_normals_.resize(3 * nt, 3);
+  for (int t = 0; t < nt; ++t) {
+    for (int a = 0; a < 3; ++a) {
+      const int i = triangles_(t, (a + 1) % 3), j = triangles_(t, (a + 2) % 3);
+      const auto key = std::minmax(i, j);
+      edge_normals_.row(3 * t + a) = face_normals_.row(t);
+      const auto [it, added] = edges.emplace(key, std::pair{t, a});
+      if (added) continue;
+      const auto [u, b] = it->second;
+      edge_normals_.row(3 * t + a) += face_normals_.row(u);
+      edge_normals_.row(3 * u + b) += face_normals_.row(t);
+    }
+  }
+}
+
+Eigen::Vector3d WallDistance::pseudonormal(int t, const Eigen::Vector3d& b) const {
+  constexpr double kOnEdge = 1e-9;  // barycentric coordinate below which the point is on the edge
+  int zeros = 0, last_zero = 0, largest = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (b[a] < kOnEdge) {
+      ++zeros;
+      last_zero = a;
+    }
+    if (b[a] > b[largest]) largest = a;
+  }
+  if (zeros >= 2) return node_normals_.row(triangles_(t, largest)).transpose();
+  if (zeros == 1) return edge_normals_.row(3 * t + last_zero).transpose();
+  return face_normals_.row(t).transpose();
+}
 
 WallDistance::Query WallDistance::closest(const Eigen::Vector3d& x) const {
   Eigen::Vector3d wrapped = x;
@@ -48,11 +96,15 @@ WallDistance::Query WallDistance::closest(const Eigen::Vector3d& x) const {
   const TriangleAabbTree::ClosestPoint c = tree_.closest_point(wrapped);
   const auto tri = images_.triangles.row(c.triangle);
   const Eigen::Vector3d p0 = images_.points.row(tri[0]).transpose();
-  const Eigen::Vector3d n =
-      (images_.points.row(tri[1]).transpose() - p0).cross(images_.points.row(tri[2]).transpose() - p0).normalized();
+  const Eigen::Vector3d e1 = images_.points.row(tri[1]).transpose() - p0, e2 = images_.points.row(tri[2]).transpose() - p0;
+  // Barycentric coordinates of the closest point (least squares in the triangle's plane).
+  const Eigen::Vector3d d = c.point - p0;
+  const double a11 = e1.dot(e1), a12 = e1.dot(e2), a22 = e2.dot(e2), det = a11 * a22 - a12 * a12;
+  const double u = (a22 * d.dot(e1) - a12 * d.dot(e2)) / det, v = (a11 * d.dot(e2) - a12 * d.dot(e1)) / det;
+  const Eigen::Vector3d n = pseudonormal(c.triangle % static_cast<int>(triangles_.rows()), Eigen::Vector3d(1 - u - v, u, v));
   Query q;
   q.point = c.point + (x - wrapped);
-  q.normal = n;
+  q.normal = n.normalized();
   q.signed_distance = (wrapped - c.point).dot(n) >= 0 ? c.distance : -c.distance;
   return q;
 }

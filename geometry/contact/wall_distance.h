@@ -1,6 +1,10 @@
 #pragma once
 // Signed distance from points to a vessel wall, positive in the lumen (the side the wall
-// normals point to, vessel_mesh.h), by a CGAL AABB tree over the wall triangles. A wall periodic
+// normals point to, vessel_mesh.h), by a CGAL AABB tree over the wall triangles. The side is
+// that of the pseudonormal at the closest point (Baerentzen & Aanaes, IEEE TVCG 11, 2005): the
+// triangle's normal inside it, the sum of the two triangles' normals on an edge, the
+// angle-weighted normal at a node; a triangle's own normal would put points beside a ridge
+// that juts into the lumen (the divider between two branches) on the wrong side. A wall periodic
 // along box axes is unwrapped and copied once to each side along those axes, and queries are
 // wrapped into the box first, so that points anywhere (cells are not wrapped) get the distance
 // to the nearest periodic image of the wall.
@@ -18,7 +22,7 @@ class WallDistance {
 
   struct Query {
     Eigen::Vector3d point;         // closest wall point (the image next to the query)
-    Eigen::Vector3d normal;        // unit normal of its triangle, into the lumen
+    Eigen::Vector3d normal;        // the unit pseudonormal there, into the lumen
     double signed_distance = 0.0;  // > 0 in the lumen, < 0 beyond the wall
   };
   Query closest(const Eigen::Vector3d& x) const;
@@ -26,8 +30,15 @@ class WallDistance {
   const Eigen::Vector3d& period() const { return period_; }
 
  private:
+  // The pseudonormal at the point with barycentric coordinates `b` of wall triangle t.
+  Eigen::Vector3d pseudonormal(int t, const Eigen::Vector3d& b) const;
+
   Eigen::Vector3d period_;
-  TriangleMesh images_;  // unwrapped triangles and their periodic copies
+  Eigen::Matrix<int, Eigen::Dynamic, 3> triangles_;           // the wall's, node indices
+  Eigen::Matrix<double, Eigen::Dynamic, 3> face_normals_;     // unit, per wall triangle
+  Eigen::Matrix<double, Eigen::Dynamic, 3> node_normals_;     // angle-weighted, per wall node
+  Eigen::Matrix<double, Eigen::Dynamic, 3> edge_normals_;     // per triangle edge a (opposite node a): the sum of its two faces'
+  TriangleMesh images_;  // unwrapped triangles and their periodic copies (wall triangle = index % count)
   TriangleAabbTree tree_;
 };
 

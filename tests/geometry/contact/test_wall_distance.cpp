@@ -2,12 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <utility>
 #include <vector>
 
+#include "geometry/vessel/network.h"
 #include "geometry/vessel/vessel.h"
 
 using namespace rbcflow;
@@ -56,4 +60,54 @@ TEST(WallDistance, SmallestDistanceOfCellsEqualsEveryPointQueried) {
   EXPECT_EQ(smallest_wall_distance(d, cells), every);
   EXPECT_NEAR(every, 0.15, 0.01);
   EXPECT_EQ(smallest_wall_distance(d, {}), std::numeric_limits<double>::infinity());
+}
+
+// The side of points beside ridges that jut into the lumen: the dividers of a two-junction
+// network (geometry/vessel/network.h), where a triangle's own normal put a point 0.47 inside
+// the lumen 0.47 beyond the wall. Points inside a segment's cylinder (by its exact radius less
+// the chord sag) are in the lumen; points farther than an element from every cylinder and
+// junction sphere are beyond the wall; the sign must say so for all of them, and the magnitude
+// is the unsigned distance.
+TEST(WallDistance, SideOfPointsBesideTheDividersOfANetwork) {
+  NetworkSpec s;
+  s.axis = 2;
+  s.box = Eigen::Vector3d(15, 7, 20);
+  s.element_size = 0.3;
+  auto segment = [](Eigen::Vector3d a, Eigen::Vector3d b, double d) { return NetworkSegment{a, b, d}; };
+  s.segments = {segment({7.5, 3.5, 0}, {7.5, 3.5, 4}, 4.0),     segment({7.5, 3.5, 4}, {3.7, 3.5, 10}, 3.2),
+                segment({7.5, 3.5, 4}, {11.3, 3.5, 10}, 3.0),   segment({3.7, 3.5, 10}, {7.5, 3.5, 16}, 3.2),
+                segment({11.3, 3.5, 10}, {7.5, 3.5, 16}, 3.0), segment({7.5, 3.5, 16}, {7.5, 3.5, 20}, 4.0)};
+  const VesselMesh wall = network(s);
+  const NetworkLayout layout = network_layout(s);
+  const WallDistance d(wall);
+  // The point of the failure: in the 3.2 daughter beside the divider at the split.
+  EXPECT_GT(d.closest({7.22, 3.95, 6.38}).signed_distance, 0.3);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int inside = 0, outside = 0;
+  const double sag = 0.3 * 0.3 / (8 * 1.5);
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector3d x(15 * u(random), 7 * u(random), 20 * u(random));
+    double in_cylinder = -1e300, off_everything = 1e300;  // by how much inside the nearest cylinder; clearance
+    for (const NetworkSegment& g : s.segments) {
+      const Eigen::Vector3d a = g.to - g.from;
+      const double t = (x - g.from).dot(a) / a.squaredNorm();
+      const double r = (x - g.from - std::clamp(t, 0.0, 1.0) * a).norm();
+      if (t >= 0 && t <= 1) in_cylinder = std::max(in_cylinder, 0.5 * g.diameter - r);
+      off_everything = std::min(off_everything, r - 0.5 * g.diameter);
+    }
+    for (const NetworkNode& n : layout.nodes)
+      if (n.sphere_radius > 0) off_everything = std::min(off_everything, (x - n.point).norm() - n.sphere_radius);
+    const WallDistance::Query q = d.closest(x);
+    if (in_cylinder > sag + 1e-9) {
+      EXPECT_GT(q.signed_distance, 0.0) << x.transpose();
+      ++inside;
+    } else if (off_everything > 0.3) {
+      EXPECT_LT(q.signed_distance, 0.0) << x.transpose();
+      ++outside;
+    }
+  }
+  std::printf("network: %d points inside a cylinder, %d clear of the lumen, all on their side\n", inside, outside);
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(outside, 5000);
 }
