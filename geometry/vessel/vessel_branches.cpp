@@ -1,5 +1,8 @@
 #include "geometry/vessel/vessel_branches.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/vessel/vessel_periodic.h"
 
 namespace rbcflow {
@@ -65,10 +68,23 @@ std::vector<VesselBranch> network_branches(const NetworkSpec& spec) {
     const NetworkSegment& s = spec.segments[i];
     const double r = 0.5 * s.diameter;
     b.push_back({s.from, s.to, r});
-    // Clear of each end's junction sphere and of the other segments' cylinders near it.
+    // A cross-section at distance d from a junction along the segment is clear of the junction
+    // sphere for d >= its radius, and of another segment leaving the junction at an angle theta
+    // below 90 degrees to this one for d sin(theta) >= the sum of the radii (segments leaving at
+    // 90 degrees or more go the other way).
     auto margin = [&](int node) {
       const NetworkNode& n = layout.nodes[node];
-      return n.on_face ? 0.0 : n.sphere_radius + r;
+      if (n.on_face) return 0.0;
+      const Eigen::Vector3d out = (node == layout.ends[i][0] ? s.to - s.from : s.from - s.to).normalized();
+      double d = n.sphere_radius;
+      for (int j : n.segments) {
+        if (j == i) continue;
+        const NetworkSegment& o = spec.segments[j];
+        const Eigen::Vector3d other = (node == layout.ends[j][0] ? o.to - o.from : o.from - o.to).normalized();
+        const double c = out.dot(other);
+        if (c > 0) d = std::max(d, (r + 0.5 * o.diameter) / std::sqrt(std::max(1e-12, 1 - c * c)));
+      }
+      return d;
     };
     set_clear(b.back(), (s.to - s.from).norm(), margin(layout.ends[i][0]), margin(layout.ends[i][1]));
   }
