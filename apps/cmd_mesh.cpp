@@ -37,7 +37,8 @@ int run_mesh(Args& args) {
         "  Builds the [vessel] of the case with gmsh (tube, constriction, bifurcation, or a\n"
         "  .msh/.stl/.step/.iges file), runs the mesh checks (closed, manifold, consistently\n"
         "  oriented with normals into the lumen, no duplicate nodes), prints the node and\n"
-        "  triangle counts and the minimum angle, and writes WALL.msh and WALL.vtp beside it.\n"
+        "  triangle counts and the minimum angle, and writes WALL.msh and WALL.vtp beside it\n"
+        "  (with the branch of each triangle, as branches.csv numbers them).\n"
         "  Exit status 2 for a bad case or a vessel that cannot be built, 1 when the files\n"
         "  cannot be written.\n");
     return 0;
@@ -70,7 +71,19 @@ int run_mesh(Args& args) {
   write_vessel(wall, msh.string());
   fs::path vtp = msh;
   vtp.replace_extension(".vtp");
-  write_vtp(vtp, drawable_surface(wall));
+  // The branch of each triangle (nearest centreline, vessel_branch.h), for colouring in ParaView.
+  const std::vector<VesselBranch> branches = vessel_branches(c);
+  std::vector<SurfaceField> triangle_fields;
+  if (!branches.empty()) {
+    Eigen::MatrixXd branch(wall.surface.num_triangles(), 1);
+    for (int t = 0; t < wall.surface.num_triangles(); ++t) {
+      const Eigen::Vector3d centroid = triangle_vertices(wall, t).rowwise().mean();
+      branch(t, 0) = nearest_branch(branches, centroid, wall.period);
+    }
+    triangle_fields.push_back({"branch", branch});
+    std::printf("branches: %zu (the triangles' field `branch` in the .vtp)\n", branches.size());
+  }
+  write_vtp(vtp, drawable_surface(wall), {}, triangle_fields);
   std::printf("wrote:   %s, %s\n", msh.string().c_str(), vtp.string().c_str());
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
+#include <vtkCellData.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -18,7 +19,27 @@
 
 namespace rbcflow {
 
-vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<SurfaceField>& fields) {
+namespace {
+
+vtkSmartPointer<vtkDataArray> to_array(const SurfaceField& f, int rows, const char* what) {
+  if (f.values.rows() != rows) {
+    throw std::invalid_argument("write_vtp: field '" + f.name + "' has " + std::to_string(f.values.rows()) +
+                                " rows for " + std::to_string(rows) + " " + what);
+  }
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(f.name.c_str());
+  array->SetNumberOfComponents(static_cast<int>(f.values.cols()));
+  array->SetNumberOfTuples(rows);
+  for (int p = 0; p < rows; ++p) {
+    for (int c = 0; c < f.values.cols(); ++c) array->SetComponent(p, c, f.values(p, c));
+  }
+  return array;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::vector<SurfaceField>& fields,
+                                         const std::vector<SurfaceField>& triangle_fields) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(mesh.num_points());
@@ -33,27 +54,15 @@ vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh, const std::ve
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(cells);
-  for (const SurfaceField& f : fields) {
-    if (f.values.rows() != mesh.num_points()) {
-      throw std::invalid_argument("write_vtp: field '" + f.name + "' has " +
-                                  std::to_string(f.values.rows()) + " rows for " +
-                                  std::to_string(mesh.num_points()) + " points");
-    }
-    vtkNew<vtkDoubleArray> array;
-    array->SetName(f.name.c_str());
-    array->SetNumberOfComponents(static_cast<int>(f.values.cols()));
-    array->SetNumberOfTuples(mesh.num_points());
-    for (int p = 0; p < mesh.num_points(); ++p) {
-      for (int c = 0; c < f.values.cols(); ++c) array->SetComponent(p, c, f.values(p, c));
-    }
-    poly->GetPointData()->AddArray(array);
-  }
+  for (const SurfaceField& f : fields) poly->GetPointData()->AddArray(to_array(f, mesh.num_points(), "points"));
+  for (const SurfaceField& f : triangle_fields)
+    poly->GetCellData()->AddArray(to_array(f, mesh.num_triangles(), "triangles"));
   return poly;
 }
 
-void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<SurfaceField>& fields) {
-  const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, fields);
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh, const std::vector<SurfaceField>& fields,
+               const std::vector<SurfaceField>& triangle_fields) {
+  const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, fields, triangle_fields);
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(tmp.c_str());
@@ -120,6 +129,17 @@ Surface read_vtp_surface(const std::filesystem::path& path, const std::string& n
     s.fields.push_back({array->GetName(), values});
   }
   return s;
+}
+
+Eigen::MatrixXd read_vtp_triangle_field(const std::filesystem::path& path, const std::string& name) {
+  const vtkSmartPointer<vtkPolyData> poly = read_polydata(path);
+  vtkDataArray* array = poly->GetCellData()->GetArray(name.c_str());
+  if (!array) throw std::runtime_error("cannot read " + path.string() + ": no triangle field '" + name + "'");
+  Eigen::MatrixXd values(array->GetNumberOfTuples(), array->GetNumberOfComponents());
+  for (vtkIdType p = 0; p < array->GetNumberOfTuples(); ++p) {
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c) values(p, c) = array->GetComponent(p, c);
+  }
+  return values;
 }
 
 }  // namespace rbcflow

@@ -10,9 +10,14 @@
 
 namespace rbcflow {
 
-// Writes `mesh` and its point fields as a binary, compressed .vtp file (atomically).
+// Writes `mesh` and its point fields (and fields on its triangles, VTK's cell data) as a
+// binary, compressed .vtp file (atomically).
 void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<SurfaceField>& fields = {});
+               const std::vector<SurfaceField>& fields = {}, const std::vector<SurfaceField>& triangle_fields = {});
+
+// The named array of the triangles' (cell) data of a .vtp file, one row per triangle; throws
+// naming the file and the field when it is absent.
+Eigen::MatrixXd read_vtp_triangle_field(const std::filesystem::path& path, const std::string& name);
 
 // Reads the points and triangles of a .vtp file (non-triangle cells are an error).
 TriangleMesh read_vtp(const std::filesystem::path& path);

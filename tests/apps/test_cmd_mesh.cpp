@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "geometry/vessel/mesh_check.h"
 #include "geometry/vessel/mesh_orientation.h"
@@ -78,4 +79,29 @@ TEST(MeshCommand, BifurcationFilesReadBack) {
   spec.box = Eigen::Vector3d(12, 6, 16);
   EXPECT_EQ(vessel_file(spec).surface.triangles, wall.surface.triangles);
   EXPECT_EQ(read_vtp(m.vtp).num_triangles(), wall.surface.num_triangles());
+}
+
+// data/cases/network.toml: every triangle of the .vtp carries its branch (the segment whose
+// centreline is nearest), each of the six segments has triangles, and the triangles about the
+// parent's middle (z = 2, well below the split at 4) are all the parent's.
+TEST(MeshCommand, NetworkTrianglesCarryTheirBranch) {
+  const Meshed m = run_mesh("network");
+  EXPECT_NE(m.stdout_text.find("branches: 6"), std::string::npos) << m.stdout_text;
+  const TriangleMesh drawn = read_vtp(m.vtp);
+  const Eigen::MatrixXd branch = read_vtp_triangle_field(m.vtp, "branch");
+  ASSERT_EQ(branch.rows(), drawn.num_triangles());
+  std::vector<int> count(6, 0);
+  for (int t = 0; t < drawn.num_triangles(); ++t) {
+    const int b = static_cast<int>(branch(t, 0));
+    ASSERT_GE(b, 0);
+    ASSERT_LT(b, 6);
+    ++count[b];
+    double z = 0;
+    for (int a = 0; a < 3; ++a) z += drawn.points(drawn.triangles(t, a), 2) / 3;
+    if (std::abs(z - 2.0) < 1.0) {
+      EXPECT_EQ(b, 0) << "triangle " << t << " at z = " << z;
+    }
+  }
+  for (int b = 0; b < 6; ++b) EXPECT_GT(count[b], 100) << "branch " << b;
+  EXPECT_THROW(read_vtp_triangle_field(m.vtp, "cell"), std::runtime_error);
 }
