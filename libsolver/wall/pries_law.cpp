@@ -27,4 +27,21 @@ double discharge_hematocrit(double D, double ht) {
   return 0.5 * (lo + hi);
 }
 
+double PhaseSeparationLaw::a() const {
+  const double r = (alpha_um / beta_um) * (alpha_um / beta_um);
+  return -13.29 * (r - 1) / (r + 1) * (1 - discharge_hematocrit) / parent_um;
+}
+
+double PhaseSeparationLaw::b() const { return 1 + 6.98 * (1 - discharge_hematocrit) / parent_um; }
+
+double PhaseSeparationLaw::x0() const { return 0.964 * (1 - discharge_hematocrit) / parent_um; }
+
+double PhaseSeparationLaw::cell_fraction(double blood_fraction) const {
+  const double x = x0();
+  if (blood_fraction <= x) return 0.0;
+  if (blood_fraction >= 1 - x) return 1.0;
+  const double y = (blood_fraction - x) / (1 - 2 * x);
+  return 1 / (1 + std::exp(-(a() + b() * std::log(y / (1 - y)))));
+}
+
 }  // namespace rbcflow

@@ -83,3 +83,32 @@ TEST(PriesLaw, TubeToDischargeInversion) {
     EXPECT_GT(hd, 0.30) << D;
   }
 }
+
+// The phase-separation law (Pries et al. 2005) by its defining properties: the two daughters'
+// cell fractions add to one (swapping alpha and beta flips A's sign, and logit is odd); equal
+// daughters split the cells evenly at an even flow split; no cells below X0 and all above
+// 1 - X0; disproportionate (B > 1): the daughter with more than half the flow gets a larger
+// share of the cells; and the values of A, B, X0 for a 10 um parent at H_D = 0.45 with
+// daughters of 8 and 6 um, worked by hand from the published coefficients.
+TEST(PriesLaw, PhaseSeparationSplitsTheCellsDisproportionately) {
+  const PhaseSeparationLaw law{10.0, 8.0, 6.0, 0.45};
+  EXPECT_NEAR(law.a(), -13.29 * (16.0 / 9 - 1) / (16.0 / 9 + 1) * 0.055, 1e-12);  // -0.2047
+  EXPECT_NEAR(law.b(), 1.3839, 1e-12);
+  EXPECT_NEAR(law.x0(), 0.05302, 1e-12);
+  const PhaseSeparationLaw swapped{10.0, 6.0, 8.0, 0.45};
+  for (double f : {0.06, 0.2, 0.35, 0.5, 0.7, 0.9})
+    EXPECT_NEAR(law.cell_fraction(f) + swapped.cell_fraction(1 - f), 1.0, 1e-12) << f;
+  const PhaseSeparationLaw even{10.0, 7.0, 7.0, 0.45};
+  EXPECT_NEAR(even.cell_fraction(0.5), 0.5, 1e-15);
+  EXPECT_EQ(even.cell_fraction(0.04), 0.0);
+  EXPECT_EQ(even.cell_fraction(0.96), 1.0);
+  for (double f : {0.6, 0.7, 0.8, 0.9}) EXPECT_GT(even.cell_fraction(f), f) << f;
+  for (double f : {0.1, 0.2, 0.3, 0.4}) EXPECT_LT(even.cell_fraction(f), f) << f;
+  double previous = 0;
+  for (double f = 0.06; f < 0.95; f += 0.01) {
+    EXPECT_GT(law.cell_fraction(f), previous);
+    previous = law.cell_fraction(f);
+  }
+  // Wider parents and higher hematocrits separate less (X0 and B - 1 scale as (1 - H_D) / D_F).
+  EXPECT_LT((PhaseSeparationLaw{20.0, 8.0, 6.0, 0.45}.x0()), law.x0());
+}
