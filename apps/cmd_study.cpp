@@ -2,6 +2,7 @@
 // case (a straight tube with cells), averages its effective viscosity over the statistically
 // steady part, and writes DIR/study.csv, DIR/study.png (mu_eff against D with the Pries law
 // at the runs' tube hematocrit and its +-10% band) and end and side renders of every tube.
+// On bifurcations it is a phase-separation study instead (phase_separation_study.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <omp.h>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,7 @@
 #include "libsolver/wall/pries_law.h"
 #include "scenario/physical_units.h"
 #include "scenario/run.h"
+#include "phase_separation_study.h"
 #include "study_analysis.h"
 
 namespace rbcflow::cli {
@@ -220,6 +223,34 @@ void run_side_by_side(const std::vector<Case>& cases, const std::vector<fs::path
   run_children(runs, jobs, omp_get_max_threads(), started, done);
 }
 
+// study.png, radial_hematocrit.png and the closing line of a tube study.
+void finish_tube_study(StudyPlot& plot, const std::vector<double>& measured_hd, const CurvesPlot& profiles,
+                       double hematocrit_sum, const std::string& out) {
+  if (plot.diameter.empty()) throw std::runtime_error("rbcflow study: every run failed; nothing to plot");
+  const double ht = hematocrit_sum / static_cast<double>(plot.diameter.size());
+  const auto [lo, hi] = std::minmax_element(plot.diameter.begin(), plot.diameter.end());
+  const double d0 = std::max(1.0, *lo - 1.0), d1 = *hi + 1.0;
+  for (int i = 0; i <= 200; ++i) {
+    const double d = d0 + (d1 - d0) * i / 200.0;
+    const double mu = pries_relative_viscosity(d, discharge_hematocrit(d, ht));
+    plot.reference_diameter.push_back(d);
+    plot.reference.push_back(mu);
+    plot.reference_low.push_back((1 - kBand) * mu);
+    plot.reference_high.push_back((1 + kBand) * mu);
+  }
+  char title[96];
+  std::snprintf(title, sizeof title, "Effective viscosity at tube hematocrit %.2f", ht);
+  plot.title = title;
+  plot.reference_name = "Pries et al. 1992";
+  if (std::none_of(measured_hd.begin(), measured_hd.end(), [](double v) { return v < 0; })) {
+    plot.reference_at_points = measured_hd;
+    plot.reference_at_points_name = "Pries at the measured H_D";
+  }
+  plot_study(plot, fs::path(out) / "study.png");
+  if (!profiles.names.empty()) plot_curves(profiles, fs::path(out) / "radial_hematocrit.png");
+  std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());
+}
+
 void print_help() {
   std::printf(
       "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse] [--jobs J] [--quiet]\n"
@@ -241,7 +272,12 @@ void print_help() {
       "  after another when a case leaves cores idle (list the longest cases first). Once the last\n"
       "  case has started, the runs still going take over the threads of those that finished.\n"
       "  A run that fails (blow-up) is reported and left out; the others are still collected,\n"
-      "  and the exit status is then 1.\n");
+      "  and the exit status is then 1.\n"
+      "  Bifurcation cases (all of one kind) make a phase-separation study instead: each run's\n"
+      "  daughter alpha (branch 1) share of the parent's blood flow and of its red cells (passages\n"
+      "  through the daughters' mid-sections, branches.csv) over the steady part, with a binomial\n"
+      "  standard error, against the law of Pries et al. 2005 at the run's diameters and the\n"
+      "  parent's measured discharge hematocrit: DIR/phase_separation.csv and .png.\n");
 }
 
 }  // namespace
@@ -270,7 +306,11 @@ int run_study(Args& args) {
   std::vector<Case> cases;
   for (const fs::path& f : case_files) {
     Case c = read_case(f);
-    if (!c.vessel || c.vessel->kind != VesselKind::tube) throw case_error(c, "vessel", "a study needs a straight tube");
+    if (!c.vessel || (c.vessel->kind != VesselKind::tube && c.vessel->kind != VesselKind::bifurcation))
+      throw case_error(c, "vessel", "a study needs a straight tube or a bifurcation");
+    if (!cases.empty() && c.vessel->kind != cases.front().vessel->kind)
+      throw case_error(c, "vessel", "a study's cases are all tubes or all bifurcations; " + case_files.front().string() +
+                                        " is a " + to_string(cases.front().vessel->kind));
     if (!c.cells) throw case_error(c, "cells", "a study needs cells");
     c.output.dir = fs::path(out) / f.stem();
     check_output_dir(c, c.output.dir);
@@ -285,7 +325,10 @@ int run_study(Args& args) {
   std::vector<std::string> child_failure(cases.size());
   if (jobs > 1) run_side_by_side(cases, case_files, reused, steps_text, fs::path(out), jobs, quiet, child_failure);
 
-  CsvWriter csv(fs::path(out) / "study.csv", study_columns());
+  const bool bifurcations = cases.front().vessel->kind == VesselKind::bifurcation;
+  PhaseSeparationStudy split(fs::path(out), quiet);
+  std::optional<CsvWriter> csv;
+  if (!bifurcations) csv.emplace(fs::path(out) / "study.csv", study_columns());
   StudyPlot plot;
   std::vector<double> measured_hd;  // Pries at each run's measured H_D (-1: not measured)
   CurvesPlot profiles;
@@ -321,6 +364,10 @@ int run_study(Args& args) {
         continue;
       }
     }
+    if (bifurcations) {
+      split.add(c, stem, fraction);
+      continue;
+    }
     const SteadyAverage a = steady_average(c.output.dir / "diagnostics.csv", c.vessel->axis, fraction);
     const CsvTable diagnostics = read_csv(c.output.dir / "diagnostics.csv");
     const double ht = std::stod(diagnostics.rows.front()[diagnostics.column("tube_hematocrit")]);
@@ -337,7 +384,7 @@ int run_study(Args& args) {
         csv_number(a.standard_error), csv_number(pries), csv_number(a.pressure_gradient_fluctuation), csv_number(a.drift)};
     const std::vector<std::string> measured = measured_columns(c, a);
     row.insert(row.end(), measured.begin(), measured.end());
-    csv.write(row);
+    csv->write(row);
     if (c.output.vtk) render_tube(c.output.dir, c, out, stem);
     if (const std::vector<double> h = radial_hematocrit(c, c.output.dir, a.from_time); !h.empty()) {
       const PhysicalUnits si(c.units);
@@ -378,29 +425,11 @@ int run_study(Args& args) {
                   a.max_area_strain.value_or(0));
     }
   }
-  if (plot.diameter.empty()) throw std::runtime_error("rbcflow study: every run failed; nothing to plot");
-  const double ht = hematocrit_sum / static_cast<double>(plot.diameter.size());
-  const auto [lo, hi] = std::minmax_element(plot.diameter.begin(), plot.diameter.end());
-  const double d0 = std::max(1.0, *lo - 1.0), d1 = *hi + 1.0;
-  for (int i = 0; i <= 200; ++i) {
-    const double d = d0 + (d1 - d0) * i / 200.0;
-    const double mu = pries_relative_viscosity(d, discharge_hematocrit(d, ht));
-    plot.reference_diameter.push_back(d);
-    plot.reference.push_back(mu);
-    plot.reference_low.push_back((1 - kBand) * mu);
-    plot.reference_high.push_back((1 + kBand) * mu);
+  if (bifurcations) {
+    split.finish();
+  } else {
+    finish_tube_study(plot, measured_hd, profiles, hematocrit_sum, out);
   }
-  char title[96];
-  std::snprintf(title, sizeof title, "Effective viscosity at tube hematocrit %.2f", ht);
-  plot.title = title;
-  plot.reference_name = "Pries et al. 1992";
-  if (std::none_of(measured_hd.begin(), measured_hd.end(), [](double v) { return v < 0; })) {
-    plot.reference_at_points = measured_hd;
-    plot.reference_at_points_name = "Pries at the measured H_D";
-  }
-  plot_study(plot, fs::path(out) / "study.png");
-  if (!profiles.names.empty()) plot_curves(profiles, fs::path(out) / "radial_hematocrit.png");
-  std::printf("study: %s/study.csv, %s/study.png, renders in %s/renders\n", out.c_str(), out.c_str(), out.c_str());
   if (failed.empty()) return 0;
   std::string names;
   for (const std::string& f : failed) names.append(names.empty() ? "" : ", ").append(f);

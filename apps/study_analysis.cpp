@@ -1,6 +1,7 @@
 #include "study_analysis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -85,6 +86,46 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
   const auto [lo, hi] = std::minmax_element(gradient.begin(), gradient.end());
   a.pressure_gradient_fluctuation = g != 0 ? (*hi - *lo) / std::abs(g) : 0.0;
   return a;
+}
+
+PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, double steady_fraction) {
+  const CsvTable table = read_csv(csv);
+  const std::size_t time = table.column("time"), branch = table.column("branch"), flow = table.column("flow_rate");
+  const std::size_t passed = table.column("cells_passed");
+  if (table.rows.empty()) throw std::runtime_error(csv.string() + ": no rows");
+  PhaseSeparationPoint p;
+  p.to_time = std::strtod(table.rows.back()[time].c_str(), nullptr);
+  p.from_time = steady_fraction * p.to_time;
+  std::array<double, 3> flow_sum{};
+  std::array<long, 3> rows{}, before{}, last{};  // passages: the count before the window, and at its end
+  for (const auto& row : table.rows) {
+    const long b = std::strtol(row[branch].c_str(), nullptr, 10);
+    if (b < 0 || b > 2) throw std::runtime_error(csv.string() + ": branch " + row[branch] + " (a bifurcation has 0, 1, 2)");
+    const long n = std::strtol(row[passed].c_str(), nullptr, 10);
+    if (std::strtod(row[time].c_str(), nullptr) < p.from_time) {
+      before[b] = n;
+      continue;
+    }
+    last[b] = n;
+    flow_sum[b] += std::strtod(row[flow].c_str(), nullptr);
+    ++rows[b];
+  }
+  for (int b = 0; b < 3; ++b)
+    if (rows[b] == 0) throw std::runtime_error(csv.string() + ": no rows of branch " + std::to_string(b) + " in the steady part");
+  p.parent_flow = flow_sum[0] / rows[0];
+  p.alpha_flow = flow_sum[1] / rows[1];
+  p.beta_flow = flow_sum[2] / rows[2];
+  p.blood_fraction = p.alpha_flow / p.parent_flow;
+  p.parent_passages = last[0] - before[0];
+  p.alpha_passages = last[1] - before[1];
+  p.beta_passages = last[2] - before[2];
+  const long n = p.alpha_passages + p.beta_passages;
+  if (n > 0) {
+    const double f = static_cast<double>(p.alpha_passages) / static_cast<double>(n);
+    p.cell_fraction = f;
+    p.cell_fraction_stderr = std::sqrt(f * (1 - f) / static_cast<double>(n));
+  }
+  return p;
 }
 
 }  // namespace rbcflow::cli

@@ -1,8 +1,8 @@
 #pragma once
-// The statistics of a tube study (paper section 11.2): from a run's diagnostics.csv, the
+// The statistics of a study: for a tube (paper section 11.2), from a run's diagnostics.csv, the
 // effective viscosity (45)-(46) averaged over the statistically steady part of the run, its
 // standard error by batch means, its drift across the averaged part, and the fluctuation of the
-// mean pressure gradient.
+// mean pressure gradient; for a bifurcation, from its branches.csv, the split of blood and cells.
 #include <filesystem>
 #include <optional>
 
@@ -28,5 +28,24 @@ struct SteadyAverage {
 // Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file
 // when it has no effective viscosity (no straight tube) or no rows in the steady part.
 SteadyAverage steady_average(const std::filesystem::path& diagnostics_csv, int axis, double steady_fraction);
+
+// The split at a bifurcation (branches.csv: 0 the parent, 1 daughter alpha, 2 daughter beta)
+// over the rows with time >= steady_fraction x the last time: the fraction of the parent's
+// blood flow that alpha receives (mean flows), and of the cells (the passages through the
+// daughters' mid-sections in that time, from the last count before it or the run's start; the
+// parent's for its discharge hematocrit).
+struct PhaseSeparationPoint {
+  double from_time = 0, to_time = 0;
+  double parent_flow = 0, alpha_flow = 0, beta_flow = 0;  // time means
+  double blood_fraction = 0;                              // alpha / parent
+  long parent_passages = 0, alpha_passages = 0, beta_passages = 0;
+  // alpha / (alpha + beta) passages, and its binomial standard error sqrt(f (1 - f) / n): each
+  // cell reaching the split goes one way or the other; empty without passages.
+  std::optional<double> cell_fraction, cell_fraction_stderr;
+};
+
+// Throws std::runtime_error naming the file when it has not three branches or no rows in the
+// steady part.
+PhaseSeparationPoint phase_separation_point(const std::filesystem::path& branches_csv, double steady_fraction);
 
 }  // namespace rbcflow::cli

@@ -83,12 +83,14 @@ void plot_curves(const CurvesPlot& c, const std::filesystem::path& png, int widt
 
 void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width, int height) {
   vtkNew<vtkContextView> view = chart_view(png, width, height);
-  vtkChartXY* chart = add_chart(view, s.title, "tube diameter D (um)", "effective viscosity mu_eff / mu");
+  vtkChartXY* chart = add_chart(view, s.title, s.x_title, s.y_title);
   static const unsigned char grey[3] = {150, 150, 150}, black[3] = {40, 40, 40}, blue[3] = {31, 119, 180};
   if (!s.reference_diameter.empty()) {
     add(chart, vtkChart::LINE, s.reference_name, s.reference_diameter, s.reference, black, 2.0f);
-    add(chart, vtkChart::LINE, s.reference_name + " -10%", s.reference_diameter, s.reference_low, grey, 1.0f);
-    add(chart, vtkChart::LINE, s.reference_name + " +10%", s.reference_diameter, s.reference_high, grey, 1.0f);
+    if (!s.reference_low.empty()) {
+      add(chart, vtkChart::LINE, s.reference_name + " -10%", s.reference_diameter, s.reference_low, grey, 1.0f);
+      add(chart, vtkChart::LINE, s.reference_name + " +10%", s.reference_diameter, s.reference_high, grey, 1.0f);
+    }
   }
   // Error bars as short vertical lines, then the points.
   for (std::size_t i = 0; i < s.diameter.size(); ++i) {
@@ -110,6 +112,7 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
     hi = std::max(hi, s.value[i] + e);
   }
   for (double v : s.reference_at_points) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : s.reference) lo = std::min(lo, v), hi = std::max(hi, v);
   for (double v : s.reference_low) lo = std::min(lo, v);
   for (double v : s.reference_high) hi = std::max(hi, v);
   if (lo < hi) {

@@ -1,7 +1,8 @@
 #pragma once
-// The PNGs of a tube study: the measured effective viscosity against the tube diameter (paper
-// fig. 13), with error bars, over a reference curve and its band (the Pries law +-10%); and
-// curves of one quantity per tube.
+// The PNGs of a study: measured points with error bars over a reference curve and its band (a
+// tube study: the effective viscosity against the tube diameter, paper fig. 13, over the Pries
+// law +-10%; a bifurcation study: the cells' split against the blood's); and curves of one
+// quantity per tube.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,8 +11,9 @@ namespace rbcflow {
 
 struct StudyPlot {
   std::string title;
+  std::string x_title = "tube diameter D (um)", y_title = "effective viscosity mu_eff / mu";
   std::vector<double> diameter, value, error;  // the measured points (error: +- one bar)
-  std::vector<double> reference_diameter, reference, reference_low, reference_high;
+  std::vector<double> reference_diameter, reference, reference_low, reference_high;  // low, high: a +-10% band, or none
   std::string reference_name = "reference";
   // The reference at each point's own condition (the Pries law at the run's measured H_D),
   // drawn as crosses at the points' diameters; empty: none.

@@ -125,3 +125,35 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
   EXPECT_FALSE(b.tube_velocity || b.discharge_hematocrit || b.max_area_strain || b.cell_free_layer || b.min_wall_gap);
   fs::remove(old);
 }
+
+// A bifurcation's branches.csv written by hand: over 100 steps the parent carries 2.0, alpha
+// 1.25 and beta 0.75; every 4th step a cell passes the parent, and of those, two in three go
+// to alpha. Over the second half (t >= 0.5: steps 50..100) the blood fraction is 0.625, and
+// the cells' fraction the counted passages' with its binomial error.
+TEST(StudyAnalysis, PhaseSeparationPointFromBranches) {
+  const fs::path path = fs::temp_directory_path() / "rbcflow_test_study_analysis_branches.csv";
+  fs::remove(path);
+  {
+    BranchesCsv csv(path);
+    long parent = 0, alpha = 0, beta = 0;
+    for (int i = 1; i <= 100; ++i) {
+      if (i % 4 == 0) {
+        ++parent;
+        (parent % 3 == 0 ? beta : alpha) += 1;
+      }
+      const double t = 0.01 * i;
+      csv.write({{i, t, 0, 2.0, 3, parent}, {i, t, 1, 1.25, 2, alpha}, {i, t, 2, 0.75, 1, beta}});
+    }
+  }
+  const cli::PhaseSeparationPoint p = cli::phase_separation_point(path, 0.5);
+  EXPECT_DOUBLE_EQ(p.from_time, 0.5);
+  EXPECT_DOUBLE_EQ(p.blood_fraction, 0.625);
+  // Steps 50..100: passages at 52, 56, ..., 100 (13 of them, counted from step 49's total).
+  EXPECT_EQ(p.parent_passages, 13);
+  EXPECT_EQ(p.alpha_passages + p.beta_passages, 13);
+  ASSERT_TRUE(p.cell_fraction);
+  const double f = static_cast<double>(p.alpha_passages) / 13;
+  EXPECT_DOUBLE_EQ(*p.cell_fraction, f);
+  EXPECT_NEAR(*p.cell_fraction_stderr, std::sqrt(f * (1 - f) / 13), 1e-15);
+  EXPECT_NEAR(f, 2.0 / 3, 0.06);
+}
