@@ -92,7 +92,7 @@ void print_vessel(const Scenario& s) {
     return;
   }
   std::printf("         branches (branches.csv; flow %s):\n",
-              s.options.tube ? "pi a^2 U from the tube meter" : "through each branch's section clearest of the cells");
+              s.branch_flow_by_meter ? "pi a^2 U from the tube meter" : "through each branch's section clearest of the cells");
   const char* names[] = {"parent", "daughter", "daughter"};
   for (std::size_t b = 0; b < s.branches.size(); ++b) {
     const VesselBranch& g = s.branches[b];

@@ -631,10 +631,11 @@ Case read_root(const toml::value& root, const fs::path& file) {
   c.vessel = read_vessel(top, c.domain, file.parent_path());
   for (const auto& [key, given] : {std::pair{"tube_velocity", c.domain.tube_velocity.has_value()},
                                    std::pair{"pseudo_shear_rate", c.domain.pseudo_shear_rate.has_value()}}) {
-    if (given && !(c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction))) {
+    if (given && !(c.vessel && (c.vessel->kind == VesselKind::tube || c.vessel->kind == VesselKind::constriction ||
+                                c.vessel->kind == VesselKind::bifurcation))) {
       ctx.fail(c.source.lines.at(std::string("domain.") + key), std::string("domain.") + key,
-               "needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in its straight section "
-               "sets <u>); use mean_velocity or pressure_gradient otherwise");
+               "needs a [vessel] of kind \"tube\", \"constriction\" or \"bifurcation\" (the flow in its straight "
+               "(parent) section sets <u>); use mean_velocity or pressure_gradient otherwise");
     }
   }
   c.cells = read_cells(top, c.domain, c.vessel.has_value());

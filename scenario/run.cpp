@@ -93,7 +93,7 @@ class RunOutput {
       branches_csv_.emplace(dir_ / "branches.csv", resume);
       const std::vector<long> passed = resume ? passed_at(dir_ / "branches.csv", *resume, s.branches.size()) : std::vector<long>{};
       const std::optional<double> tube_area =
-          s.options.tube ? std::optional<double>(std::numbers::pi * s.options.tube->radius * s.options.tube->radius)
+          s.branch_flow_by_meter ? std::optional<double>(std::numbers::pi * s.options.tube->radius * s.options.tube->radius)
                          : std::nullopt;
       branches_.emplace(s.branches, s.vessel->period, tube_area, cell_centroids(stepper), passed);
     }

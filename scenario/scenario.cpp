@@ -33,17 +33,24 @@ std::function<Eigen::Vector3d(const Eigen::Vector3d&)> background(const Backgrou
 }
 
 // The tube velocity is measured on the vessel's axis (the box centre in the cross-section)
-// where it is straight: anywhere in a tube, half a period from a constriction's neck.
+// where it is straight: anywhere in a tube, half a period from a constriction's neck, in the
+// middle of a bifurcation's parent (a quarter period before the split).
 std::optional<TubeSection> tube_section(const Case& c) {
   if (!c.vessel || c.domain.kind != DomainKind::periodic) return std::nullopt;
   const CaseVessel& v = *c.vessel;
-  if (v.kind != VesselKind::tube && v.kind != VesselKind::constriction) return std::nullopt;
+  if (v.kind != VesselKind::tube && v.kind != VesselKind::constriction && v.kind != VesselKind::bifurcation)
+    return std::nullopt;
   TubeSection t;
   t.axis = v.axis;
   t.radius = 0.5 * v.diameter;
   t.axis_point = 0.5 * to_eigen(c.domain.box);
   const double length = c.domain.box[v.axis];
-  t.axis_point[v.axis] = v.kind == VesselKind::constriction ? std::fmod(v.center + 0.5 * length, length) : 0.0;
+  if (v.kind == VesselKind::tube) t.axis_point[v.axis] = 0.0;
+  if (v.kind == VesselKind::constriction) t.axis_point[v.axis] = std::fmod(v.center + 0.5 * length, length);
+  if (v.kind == VesselKind::bifurcation) {
+    t.axis_point[v.axis] = std::fmod(v.center + 0.75 * length, length);
+    t.whole_period = false;
+  }
   return t;
 }
 
@@ -121,7 +128,8 @@ Scenario prepare_scenario(const Case& c) {
     if (c.vessel->kind == VesselKind::tube) s.tube_radius = 0.5 * c.vessel->diameter;
     s.branches = vessel_branches(c);
     // A tube's or constriction's flow is its meter's; other vessels' is measured per branch.
-    if (!s.options.tube)
+    s.branch_flow_by_meter = s.options.tube && s.options.tube->whole_period;
+    if (!s.branch_flow_by_meter)
       for (const VesselBranch& b : s.branches) s.options.flux_sections.push_back(candidate_sections(b));
   }
   const long wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;

@@ -36,6 +36,7 @@ struct Scenario {
   long steps = 0;                          // to reach time.end
   std::optional<double> tube_radius;       // a straight tube: for (45)-(46)
   std::vector<VesselBranch> branches;      // of the vessel (vessel.h), for branches.csv
+  bool branch_flow_by_meter = false;       // the one branch's flow is the tube meter's pi a^2 U
   std::optional<double> tube_hematocrit;   // the cells' volume over the lumen's, with a vessel
   std::optional<std::string> placement_note;  // cells placed pre-deformed: how
   std::vector<EwaldSum> ewald;             // in a periodic domain

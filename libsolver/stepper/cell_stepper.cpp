@@ -328,8 +328,8 @@ StepReport CellStepper::advance(const FlowSolution& s) {
       points.push_back(grids_->n_grid->synthesize(c.shape.coeffs()));
     }
     report.min_wall_gap = smallest_wall_distance(*wall_distance_, points);
-    if (s.tube_velocity) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
-    if (options_.tube) {
+    if (s.tube_velocity && options_.tube->whole_period) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
+    if (options_.tube && options_.tube->whole_period) {
       report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
                                                options_.domain.box->lengths()[options_.tube->axis]);
     }

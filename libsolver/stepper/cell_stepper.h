@@ -88,11 +88,12 @@ struct StepReport {
   double max_area_error = 0.0;
   // Largest local area strain |J_S - 1| over the cells' membranes (N grid), before the step.
   double max_area_strain = 0.0;
-  // Through the options' tube section: the tube velocity U, and with cells the discharge
-  // hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged over the period, cell_flux.h).
+  // Through the options' tube section: the tube velocity U, and with cells in a tube along the
+  // whole period the discharge hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged
+  // over the period, cell_flux.h).
   std::optional<double> tube_velocity, discharge_hematocrit;
   std::vector<double> section_flux;  // through the options' flux sections (FlowSolution's)
-  std::optional<double> cell_free_layer;  // with cells in the tube section's tube (cell_free_layer.h)
+  std::optional<double> cell_free_layer;  // with cells in a tube along the whole period (cell_free_layer.h)
   // With a wall and cells: the smallest distance of a cell's grid point from the wall, before
   // the step (negative: through it). Against the wall's element size: is the gap resolved?
   std::optional<double> min_wall_gap;

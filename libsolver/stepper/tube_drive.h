@@ -25,6 +25,11 @@ struct TubeSection {
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
   int axis = 2;
   double radius = 0.0;
+  // Whether the vessel is this tube all along the period (a tube, a constriction) and holds
+  // every cell: then the cells' flux over the period gives H_D and their outer edge the
+  // cell-free layer. A bifurcation's parent is a tube for part of the period only; the
+  // flux outside the vessel is still known (the parent is the one vessel through the box face).
+  bool whole_period = true;
 };
 
 // Tube mean velocity at `axis_point` per unit <u> along `axis` (0, 1, 2), without cells.

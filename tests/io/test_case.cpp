@@ -405,23 +405,26 @@ TEST(Case, UnitsAndPseudoShearRate) {
   EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\npseudo_shear_rate = 100\n[vessel]\ndiameter = 3.5\n"),
             "bad.toml:4: domain.pseudo_shear_rate: give tube_velocity or pseudo_shear_rate, not both");
   EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\npseudo_shear_rate = 100\n"),
-            "bad.toml:3: domain.pseudo_shear_rate: needs a [vessel] of kind \"tube\" or \"constriction\" (the flow "
-            "in its straight section sets <u>); use mean_velocity or pressure_gradient otherwise");
+            "bad.toml:3: domain.pseudo_shear_rate: needs a [vessel] of kind \"tube\", \"constriction\" or "
+            "\"bifurcation\" (the flow in its straight (parent) section sets <u>); use mean_velocity or "
+            "pressure_gradient otherwise");
   EXPECT_TRUE(contains(error_of("[domain]\nbox = [5, 5, 4]\npseudo_shear_rate = -5\n[vessel]\ndiameter = 3.5\n"),
                        "domain.pseudo_shear_rate: -5 is out of range"));
 }
 
-TEST(Case, TubeVelocityDrivesATubeOrConstrictionOnly) {
+TEST(Case, TubeVelocityDrivesATubeConstrictionOrBifurcationOnly) {
   const Case c = parse_case("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\n[vessel]\ndiameter = 3.5\n", "t.toml");
   ASSERT_TRUE(c.domain.tube_velocity);
   EXPECT_EQ(*c.domain.tube_velocity, 2.0);
   EXPECT_FALSE(c.domain.mean_velocity);
   EXPECT_FALSE(c.domain.pressure_gradient);
   EXPECT_EQ(error_of("[domain]\nbox = [5, 5, 4]\ntube_velocity = 2\n"),
-            "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind \"tube\" or \"constriction\" (the flow in "
-            "its straight section sets <u>); use mean_velocity or pressure_gradient otherwise");
-  EXPECT_TRUE(contains(error_of("[domain]\nbox = [8, 8, 8]\ntube_velocity = 2\n[vessel]\nkind = \"bifurcation\"\n"
-                                "diameter = 3\ndaughter_diameters = [2, 2]\n"),
+            "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind \"tube\", \"constriction\" or \"bifurcation\" "
+            "(the flow in its straight (parent) section sets <u>); use mean_velocity or pressure_gradient otherwise");
+  EXPECT_TRUE(parse_case("[domain]\nbox = [8, 8, 8]\ntube_velocity = 2\n[vessel]\nkind = \"bifurcation\"\n"
+                         "diameter = 3\ndaughter_diameters = [2, 2]\n", "b.toml").domain.tube_velocity);
+  EXPECT_TRUE(contains(error_of("[domain]\nbox = [8, 8, 8]\ntube_velocity = 2\n[vessel]\nkind = \"network\"\n"
+                                "segments = [{ from = [4, 4, 0], to = [4, 4, 8], diameter = 3 }]\n"),
                        "bad.toml:3: domain.tube_velocity: needs a [vessel] of kind"));
   EXPECT_EQ(error_of(minimal("tube_velocity = 2\n")),
             "bad.toml:4: domain.tube_velocity: give mean_velocity or tube_velocity, not both");
