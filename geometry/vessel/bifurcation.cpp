@@ -97,15 +97,9 @@ VesselMesh build_bifurcation(const BifurcationSpec& spec, const BifurcationLayou
   if (fused.size() != 1 || fused[0].first != 3)
     throw std::runtime_error("gmsh: the parent and daughters did not fuse into one volume");
   occ::synchronize();
-  DimTags faces, wall;
+  DimTags faces;
   gmsh::model::getBoundary(fused, faces, false, false, false);
-  // The wall: the volume's faces but the two flat ends in the box faces.
-  for (const auto& [dim, tag] : faces) {
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
-    if (z1 - z0 > 1e-6 * length) wall.emplace_back(dim, tag);
-  }
-  keep_only_surfaces(wall);
+  keep_only_surfaces(without_end_caps(faces, length));
   return mesh_periodic_wall(t.axis, t.box, t.element_size, spec.centre - z_split);
 }
 

@@ -57,16 +57,9 @@ VesselMesh build_network(const NetworkSpec& spec, const NetworkLayout& layout) {
     throw std::runtime_error("gmsh: the network's segments did not fuse into one lumen (" +
                              std::to_string(cut.size()) + " pieces)");
   occ::synchronize();
-  DimTags faces, wall;
+  DimTags faces;
   gmsh::model::getBoundary(cut, faces, false, false, false);
-  // The wall: the lumen's faces but the flat cuts in the two box faces.
-  for (const auto& [dim, tag] : faces) {
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
-    const bool in_face = z1 - z0 <= 1e-6 * length && (z1 <= 1e-5 * length || z0 >= length * (1 - 1e-5));
-    if (!in_face) wall.emplace_back(dim, tag);
-  }
-  keep_only_surfaces(wall);
+  keep_only_surfaces(without_end_caps(faces, length));
   return mesh_periodic_wall(spec.axis, spec.box, spec.element_size);
 }
 

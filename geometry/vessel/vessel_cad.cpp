@@ -48,13 +48,9 @@ VesselMesh build_cad_vessel(const VesselFileSpec& spec) {
     throw std::runtime_error("CAD vessel " + spec.path + " spans [" + number(z0) + ", " + number(z1) + "] along " +
                              std::string(1, "xyz"[spec.axis]) + " (after scale " + number(spec.scale) +
                              "); a periodic vessel must span the box side [0, " + number(length) + "]");
-  std::vector<std::pair<int, int>> faces, wall;
+  std::vector<std::pair<int, int>> faces;
   gmsh::model::getEntities(faces, 2);
-  for (const auto& [dim, tag] : faces) {
-    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
-    const bool cap = z1 - z0 < 2 * tolerance && (std::abs(z0) <= tolerance || std::abs(z1 - length) <= tolerance);
-    if (!cap) wall.emplace_back(dim, tag);
-  }
+  const std::vector<std::pair<int, int>> wall = without_end_caps(faces, length);
   if (wall.empty()) throw std::runtime_error("CAD file " + spec.path + " has no surfaces");
   keep_only_surfaces(wall);
   return mesh_periodic_wall(spec.axis, spec.box, spec.element_size);

@@ -90,6 +90,17 @@ void keep_only_surfaces(const std::vector<std::pair<int, int>>& surfaces) {
   occ::synchronize();
 }
 
+std::vector<std::pair<int, int>> without_end_caps(const std::vector<std::pair<int, int>>& faces, double length) {
+  const double tolerance = 1e-5 * length;  // OCC pads bounding boxes by its tolerance
+  std::vector<std::pair<int, int>> wall;
+  for (const auto& [dim, tag] : faces) {
+    const Box b = bounding_box(dim, tag);
+    const bool cap = b.z1 - b.z0 < 2 * tolerance && (std::abs(b.z0) <= tolerance || std::abs(b.z1 - length) <= tolerance);
+    if (!cap) wall.emplace_back(dim, tag);
+  }
+  return wall;
+}
+
 VesselMesh mesh_periodic_wall(int axis, const Eigen::Vector3d& box, double element_size, double shift) {
   const double length = box[axis];
   const double lateral = std::max(box[frame_axis(axis, 0)], box[frame_axis(axis, 1)]);

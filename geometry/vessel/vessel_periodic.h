@@ -40,6 +40,10 @@ VesselMesh with_gmsh(const std::string& what, Build build) {
 // on their boundary (revolve profiles, cut end faces), so that only the wall gets meshed.
 void keep_only_surfaces(const std::vector<std::pair<int, int>>& surfaces);
 
+// The faces but those flat in the frame's box faces z = 0 and z = length (a solid's end caps,
+// a cut at the box face): the wall of a vessel that runs through them.
+std::vector<std::pair<int, int>> without_end_caps(const std::vector<std::pair<int, int>>& faces, double length);
+
 // Meshes the surfaces of the current OCC model (no volumes), which span the frame's z from 0 to
 // box[axis]: every curve in the plane z = 0 gets the curve above it in z = box[axis] as its
 // periodic copy (gmsh setPeriodic), so the nodes of the two ends match; those of the far end are
