@@ -121,8 +121,13 @@ struct Problem {
 
   Packing empty() const { return Packing(spec.box, 2.0 * overlap.radius() + spec.gap); }
 
+  // Against the wall and its own periodic images a cell is tested at full size even while the
+  // compression holds the cells smaller: those constraints do not move, so a cell must never sit
+  // where it could not grow (a daughter narrower than the cell would hold it small for good).
   bool fits(const CellPose& p, const Packing& packing, int skip = -1) const {
-    if (!overlap.inside_wall(p) || !overlap.apart(p, p, true)) return false;
+    CellPose full = p;
+    full.scale = 1.0;
+    if (!overlap.inside_wall(full) || !overlap.apart(full, full, true)) return false;
     return packing.all_near(p.position,
                             [&](int i) { return i == skip || overlap.apart(packing.cells()[i], p); });
   }
