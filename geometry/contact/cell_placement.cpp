@@ -15,6 +15,7 @@
 #include "geometry/contact/cell_overlap.h"
 #include "geometry/surface/parachute_fold.h"
 #include "geometry/contact/wall_distance.h"
+#include "geometry/format_number.h"
 
 namespace rbcflow {
 namespace {
@@ -186,11 +187,7 @@ void validate(const PlacementSpec& s) {
   if (s.check_order < 4) throw std::invalid_argument("cell placement: the check order must be at least 4");
 }
 
-std::string percent(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
+std::string percent(double x) { return format_number(x, 3); }
 
 // The narrowest tubes. Their geometry: the spacing of `count` cells along axis `a`, the lumen's
 // equivalent radius, the radius a deformed cell may fill (the margin and the gap kept free

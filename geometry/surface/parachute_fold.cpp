@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/format_number.h"
+
 namespace rbcflow {
 namespace {
 
@@ -66,12 +68,6 @@ double bisect(F f, double lo, double hi, double target) {
   return 0.5 * (lo + hi);
 }
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
-
 }  // namespace
 
 ParachuteFold fold_into_parachute(const SHSurface& cell, double radius) {
@@ -92,8 +88,8 @@ ParachuteFold fold_into_parachute(const SHSurface& cell, double radius) {
     // The least area that holds the volume within radius R falls with R up to about the
     // radius of the cylinder as long as it is wide, cbrt(V / pi), and rises beyond.
     const bool narrow = R < std::cbrt(volume / pi);
-    throw std::runtime_error("fold_into_parachute: a parachute of radius " + number(R) +
-                             " holding the cell's volume has more than its area " + number(area) +
+    throw std::runtime_error("fold_into_parachute: a parachute of radius " + format_number(R) +
+                             " holding the cell's volume has more than its area " + format_number(area) +
                              (narrow ? ": the radius is too small for the cell" : ": the radius is too large for a folded cell"));
   }
   const double length = bisect([&](double L) { return Meridian(R, L, dimple_for(L)).area(); }, shortest,

@@ -13,18 +13,13 @@
 
 #include "geometry/vessel/vessel.h"
 #include "geometry/vessel/vessel_periodic.h"
+#include "geometry/format_number.h"
 
 namespace rbcflow {
 
 namespace {
 
 using DimTags = std::vector<std::pair<int, int>>;
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
 
 // A solid capsule end of the parent: the cylinder of radius R from z = z_face to z = z_joint,
 // closed by a hemisphere centred at z_joint (a revolved profile: no tangent boolean).
@@ -112,25 +107,25 @@ BifurcationLayout bifurcation_layout(const BifurcationSpec& spec) {
   const double r0 = 0.5 * spec.daughter_diameters[0], r1 = 0.5 * spec.daughter_diameters[1];
   for (double d : spec.daughter_diameters)
     if (!(d > 0 && d < t.diameter))
-      throw std::invalid_argument("bifurcation daughter diameter " + number(d) + " must be in (0, " +
-                                  number(t.diameter) + "), below the parent's");
+      throw std::invalid_argument("bifurcation daughter diameter " + format_number(d) + " must be in (0, " +
+                                  format_number(t.diameter) + "), below the parent's");
   if (!(spec.angle_deg > 0 && spec.angle_deg < 180))
-    throw std::invalid_argument("bifurcation angle " + number(spec.angle_deg) + " must be in (0, 180) degrees");
+    throw std::invalid_argument("bifurcation angle " + format_number(spec.angle_deg) + " must be in (0, 180) degrees");
   if (!(spec.centre >= 0 && spec.centre <= length))
-    throw std::invalid_argument("bifurcation centre " + number(spec.centre) + " must be in [0, " + number(length) +
+    throw std::invalid_argument("bifurcation centre " + format_number(spec.centre) + " must be in [0, " + format_number(length) +
                                 "], the box side along the axis");
   if (!(t.element_size < std::min(r0, r1)))
-    throw std::invalid_argument("bifurcation element size " + number(t.element_size) +
-                                " must be below the daughter radius " + number(std::min(r0, r1)));
+    throw std::invalid_argument("bifurcation element size " + format_number(t.element_size) +
+                                " must be below the daughter radius " + format_number(std::min(r0, r1)));
   if (4 * radius >= length)
-    throw std::invalid_argument("bifurcation box side along the axis " + number(length) +
-                                " must exceed twice the parent diameter, " + number(2 * t.diameter));
+    throw std::invalid_argument("bifurcation box side along the axis " + format_number(length) +
+                                " must exceed twice the parent diameter, " + format_number(2 * t.diameter));
   BifurcationLayout l;
   l.offset = std::max(r0, r1) + 0.25 * (r0 + r1);
   const double lateral = 0.5 * t.box[frame_axis(t.axis, 0)];
   if (l.offset + std::max(r0, r1) >= lateral)
-    throw std::invalid_argument("bifurcation daughters reach " + number(l.offset + std::max(r0, r1)) +
-                                " from the axis; the box gives " + number(lateral) + " (half its side " +
+    throw std::invalid_argument("bifurcation daughters reach " + format_number(l.offset + std::max(r0, r1)) +
+                                " from the axis; the box gives " + format_number(lateral) + " (half its side " +
                                 std::string(1, "xyz"[frame_axis(t.axis, 0)]) + ")");
   const double alpha = 0.5 * spec.angle_deg * std::numbers::pi / 180.0;
   for (int i = 0; i < 2; ++i) {
@@ -145,9 +140,9 @@ BifurcationLayout bifurcation_layout(const BifurcationSpec& spec) {
     const double transition = straight * std::cos(alpha) + bend * std::sin(alpha);
     const double parallel = 0.5 * length - 2 * transition;
     if (parallel < 0)
-      throw std::invalid_argument("bifurcation daughters at " + number(spec.angle_deg) + " degrees need " +
-                                  number(2 * transition) + " from split to merge, half the box side along the axis (" +
-                                  number(0.5 * length) + "): make that side at least " + number(4 * transition) +
+      throw std::invalid_argument("bifurcation daughters at " + format_number(spec.angle_deg) + " degrees need " +
+                                  format_number(2 * transition) + " from split to merge, half the box side along the axis (" +
+                                  format_number(0.5 * length) + "): make that side at least " + format_number(4 * transition) +
                                   " or widen the angle");
     l.straight[i] = straight;
     l.bend_radius[i] = bend;

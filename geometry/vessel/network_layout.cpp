@@ -2,26 +2,20 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "geometry/vessel/network.h"
+#include "geometry/format_number.h"
 
 namespace rbcflow {
 namespace {
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
-
 std::string point_text(const Eigen::Vector3d& x) {
   std::string text = "[";
-  for (int k = 0; k < 3; ++k) text.append(number(x[k])).append(k < 2 ? ", " : "]");
+  for (int k = 0; k < 3; ++k) text.append(format_number(x[k])).append(k < 2 ? ", " : "]");
   return text;
 }
 
@@ -66,19 +60,19 @@ struct Checker {
     const NetworkSegment& s = spec.segments[i];
     const double r = radius(i);
     if (!(s.diameter > 2 * spec.element_size))
-      invalid(segment_name(i) + ": diameter " + number(s.diameter) + " must exceed twice the element size " +
-              number(spec.element_size));
+      invalid(segment_name(i) + ": diameter " + format_number(s.diameter) + " must exceed twice the element size " +
+              format_number(spec.element_size));
     if ((s.to - s.from).norm() <= tolerance) invalid(segment_name(i) + ": from and to are the same point");
     for (int side = 0; side < 2; ++side) {
       const Eigen::Vector3d& x = end(i, side);
       if (x[spec.axis] < -tolerance || x[spec.axis] > length + tolerance)
         invalid(segment_name(i) + ": end " + point_text(x) + " is outside the box along " +
-                std::string(1, "xyz"[spec.axis]) + " (0 to " + number(length) + ")");
+                std::string(1, "xyz"[spec.axis]) + " (0 to " + format_number(length) + ")");
       for (int d = 0; d < 3; ++d)
         if (d != spec.axis && !(x[d] - r > 0 && x[d] + r < spec.box[d]))
           invalid(segment_name(i) + " leaves the box sideways: its wall at " + point_text(x) + " reaches " +
-                  std::string(1, "xyz"[d]) + " = " + number(x[d] - r) + " .. " + number(x[d] + r) +
-                  "; the box gives 0 .. " + number(spec.box[d]));
+                  std::string(1, "xyz"[d]) + " = " + format_number(x[d] - r) + " .. " + format_number(x[d] + r) +
+                  "; the box gives 0 .. " + format_number(spec.box[d]));
     }
   }
 
@@ -116,7 +110,7 @@ struct Checker {
       const double a = node.point[spec.axis], r = node.sphere_radius;
       if (a - r < 0 || a + r > length)
         invalid("junction at " + point_text(node.point) + " (" + segment_name(first) + ") is within its radius " +
-                number(r) + " of a box face along " + std::string(1, "xyz"[spec.axis]) +
+                format_number(r) + " of a box face along " + std::string(1, "xyz"[spec.axis]) +
                 ": move it inside, or end the segments on the face");
       return;
     }
@@ -180,9 +174,9 @@ struct Checker {
       shift[spec.axis] = k * length;
       const double d = segment_distance(end(i, 0), end(i, 1), end(j, 0) + shift, end(j, 1) + shift);
       if (d <= radius(i) + radius(j))
-        invalid(segment_name(i) + " and " + segment_name(j) + " overlap: their centrelines come " + number(d) +
+        invalid(segment_name(i) + " and " + segment_name(j) + " overlap: their centrelines come " + format_number(d) +
                 " apart" + (k != 0 ? " (through the periodic box)" : "") + ", below the sum of their radii " +
-                number(radius(i) + radius(j)) + "; let them share an end point to join them");
+                format_number(radius(i) + radius(j)) + "; let them share an end point to join them");
     }
   }
 

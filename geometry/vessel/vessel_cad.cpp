@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -13,16 +12,11 @@
 
 #include "geometry/vessel/vessel.h"
 #include "geometry/vessel/vessel_periodic.h"
+#include "geometry/format_number.h"
 
 namespace rbcflow {
 
 namespace {
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
 
 VesselMesh build_cad_vessel(const VesselFileSpec& spec) {
   namespace occ = gmsh::model::occ;
@@ -45,9 +39,9 @@ VesselMesh build_cad_vessel(const VesselFileSpec& spec) {
   gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
   const double tolerance = 1e-5 * length;  // OCC pads bounding boxes by its tolerance
   if (std::abs(z0) > tolerance || std::abs(z1 - length) > tolerance)
-    throw std::runtime_error("CAD vessel " + spec.path + " spans [" + number(z0) + ", " + number(z1) + "] along " +
-                             std::string(1, "xyz"[spec.axis]) + " (after scale " + number(spec.scale) +
-                             "); a periodic vessel must span the box side [0, " + number(length) + "]");
+    throw std::runtime_error("CAD vessel " + spec.path + " spans [" + format_number(z0, 6) + ", " + format_number(z1, 6) + "] along " +
+                             std::string(1, "xyz"[spec.axis]) + " (after scale " + format_number(spec.scale, 6) +
+                             "); a periodic vessel must span the box side [0, " + format_number(length, 6) + "]");
   std::vector<std::pair<int, int>> faces;
   gmsh::model::getEntities(faces, 2);
   const std::vector<std::pair<int, int>> wall = without_end_caps(faces, length);
