@@ -129,6 +129,9 @@ struct Problem {
     CellPose full = p;
     full.scale = 1.0;
     if (!overlap.inside_wall(full) || !overlap.apart(full, full, true)) return false;
+    return apart_from_others(p, packing, skip);
+  }
+  bool apart_from_others(const CellPose& p, const Packing& packing, int skip) const {
     return packing.all_near(p.position,
                             [&](int i) { return i == skip || overlap.apart(packing.cells()[i], p); });
   }
@@ -173,9 +176,11 @@ struct Problem {
     return static_cast<double>(kept) / static_cast<double>(cells.size());
   }
 
-  bool all_fit(const Packing& cells) const {
+  // After a growth: the cells have not moved, so only the cell-cell tests can fail (the wall
+  // and the periodic images were tested at full size).
+  bool all_apart(const Packing& cells) const {
     for (int i = 0; i < cells.size(); ++i)
-      if (!fits(cells.cells()[i], cells, i)) return false;
+      if (!apart_from_others(cells.cells()[i], cells, i)) return false;
     return true;
   }
 };
@@ -389,7 +394,7 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
       Packing grown = cells;  // the same positions, so the same bins
       const double next = std::min(1.0, scale * (1.0 + growth));
       grown.set_scale(next);
-      if (problem.all_fit(grown)) {
+      if (problem.all_apart(grown)) {
         cells = std::move(grown);
         scale = next;
         growth = std::min(kMaxGrowth, 1.5 * growth);
