@@ -1,5 +1,6 @@
 # Finds every package of the stack from Debian 12 packages (Eigen 3.4, FFTW 3.3, gmsh 4.8,
-# VTK 9.1, CGAL 5.5, serial HDF5 1.10, GoogleTest, toml11 3.7, OpenMP).
+# VTK 9.1, CGAL 5.5, serial HDF5 1.10, GoogleTest, toml11 3.7, OpenMP), and OpenMPI for distributed
+# runs when installed.
 # A missing package stops configuration with the name of the Debian package to install;
 # scripts/install-deps.sh installs all of them.
 
@@ -48,6 +49,19 @@ rbcflow_require(HDF5_FOUND libhdf5-dev "HDF5 (serial, C and C++)")
 
 find_package(OpenMP QUIET)
 rbcflow_require(OpenMP_CXX_FOUND "g++ (libgomp)" "OpenMP for C++")
+
+# Distributed runs (libsolver/parallel): OpenMPI when installed; without it the build runs on
+# one rank. RBCFLOW_MPI=OFF builds without it even where it is installed.
+option(RBCFLOW_MPI "Build for distributed runs with MPI (mpirun -np P rbcflow run)" ON)
+set(RBCFLOW_WITH_MPI OFF)
+if(RBCFLOW_MPI)
+  find_package(MPI QUIET COMPONENTS CXX)
+  if(MPI_CXX_FOUND)
+    set(RBCFLOW_WITH_MPI ON)
+  else()
+    message(STATUS "rbcflow: MPI not found (Debian: libopenmpi-dev openmpi-bin): building for one rank")
+  endif()
+endif()
 
 find_package(toml11 QUIET)
 rbcflow_require(toml11_FOUND libtoml11-dev "toml11")

@@ -79,6 +79,7 @@ CellStepperOptions solver_options(const Case& c) {
   o.volume_constraint = c.time.volume_constraint;
   o.wall_solve.tolerance = c.solver.gmres_tolerance;
   o.domain.ewald_tolerance = c.ewald.tolerance;
+  o.domain.ranks = Communicator::world();  // one rank unless started by mpirun
   if (c.domain.kind == DomainKind::periodic) {
     o.domain.box = PeriodicBox(to_eigen(c.domain.box));
     if (c.domain.mean_velocity) o.mean_velocity = to_eigen(*c.domain.mean_velocity);

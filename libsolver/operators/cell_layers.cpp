@@ -15,7 +15,12 @@ namespace rbcflow {
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
                        SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density)
-    : grids_(std::move(grids)), domain_(domain), grid_cache_(grid_cache) {
+    : grids_(std::move(grids)),
+      domain_(domain),
+      grid_cache_(grid_cache),
+      owned_(owned_block(static_cast<int>(cells.size()), domain.ranks)),
+      num_cells_(static_cast<int>(cells.size())),
+      with_double_layer_(with_double_layer) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
   if (single_layer_density) {
     if (single_layer_density->rows() != static_cast<Eigen::Index>(cells.size()) * nodes_per_cell() ||
@@ -24,21 +29,30 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     single_density_ = *single_layer_density;
   }
   ScopedTimer geometry_timer(timings_.geometry);
-  const int nc = static_cast<int>(cells.size()), np = nodes_per_cell();
+  const int nc = num_cells_, np = nodes_per_cell();
   cells_.resize(nc);
+  std::vector<SourceNodes> not_owned(nc);
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) cells_[c] = std::make_shared<const CellQuadratureGeometry>(cells[c], grids_, options);
+  for (int c = 0; c < nc; ++c) {
+    if (owned_.contains(c)) {
+      cells_[c] = std::make_shared<const CellQuadratureGeometry>(cells[c], grids_, options);
+    } else {
+      not_owned[c] = cell_nodes(cells[c], *grids_);
+    }
+  }
   nodes_.x.resize(nc * np, 3);
   nodes_.normal.resize(nc * np, 3);
   nodes_.weight.resize(nc * np);
   for (int c = 0; c < nc; ++c) {
-    nodes_.x.middleRows(c * np, np) = cells_[c]->nodes().x;
-    nodes_.normal.middleRows(c * np, np) = cells_[c]->nodes().normal;
-    nodes_.weight.segment(c * np, np) = cells_[c]->nodes().weight;
+    const SourceNodes& n = cells_[c] ? cells_[c]->nodes() : not_owned[c];
+    nodes_.x.middleRows(c * np, np) = n.x;
+    nodes_.normal.middleRows(c * np, np) = n.normal;
+    nodes_.weight.segment(c * np, np) = n.weight;
   }
   // The Ewald grids first: the corrections need their xi, and leave the patch nodes within
   // the real-space cutoff (their nearest images) to the real-space sums, which weight those
-  // pairs by 1 - eta (PairShares) instead of the corrections removing eta K w.
+  // pairs by 1 - eta (PairShares) instead of the corrections removing eta K w. The grids are
+  // chosen for all the cells' nodes, on every rank alike.
   std::shared_ptr<const SpmeGrid> single_grid, double_grid;
   double xi_single = 0.0, xi_double = 0.0;
   std::array<double, 2> fold_radius{0.0, 0.0};
@@ -72,7 +86,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nc * np, 3);
   ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
+  for (int c = owned_.begin; c < owned_.end; ++c) {
     const auto targets = cells_[c]->node_targets();
     if (with_double_layer) {
       std::tie(self_single_[c], self_double_[c]) =
@@ -86,7 +100,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   self_timer.stop();
   ScopedTimer near_timer(timings_.near);
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
+  for (int c = owned_.begin; c < owned_.end; ++c) {
     // Nodes of other cells closer than the near distance (nearest periodic image), and the
     // cell's own nodes near another part of its surface.
     NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
@@ -107,49 +121,87 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   }
   near_timer.stop();
   if (single_density_) {
-    for (int c = 0; c < nc; ++c)
+    for (int c = owned_.begin; c < owned_.end; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) single_corrections.row(near_[c].rows[k]) += near_single[c].row(k);
   }
-  if (domain_.box) {
+  if (domain_.box && !owned_.empty()) {
     ScopedTimer plans_timer(timings_.geometry);
-    single_plan_ = std::make_unique<EwaldPlan>(single_grid, nodes_.x, folded_shares(Layer::single));
+    // One rank: the nodes are sources and targets (the stencils shared); several: the owned
+    // cells' nodes are the sources, every node a target.
+    auto plan = [&](std::shared_ptr<const SpmeGrid> grid, Layer layer) {
+      return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, folded_shares(layer))
+                        : std::make_unique<EwaldPlan>(std::move(grid), PointField(owned_rows(nodes_.x)), nodes_.x,
+                                                      folded_shares(layer));
+    };
+    single_plan_ = plan(single_grid, Layer::single);
     // Applied once when the single layer is computed here: nothing to keep.
     single_plan_->keep_pairs_up_to(single_density_ ? 0 : domain_.max_kept_pairs);
     if (with_double_layer) {
-      double_plan_ = std::make_unique<EwaldPlan>(double_grid, nodes_.x, folded_shares(Layer::double_));
+      double_plan_ = plan(double_grid, Layer::double_);
       double_plan_->keep_pairs_up_to(domain_.max_kept_pairs);
     }
     // The plans hold the folded nodes now, as their pair shares.
-    for (int c = 0; c < nc; ++c) {
+    for (int c = owned_.begin; c < owned_.end; ++c) {
       for (LayerCorrection* k : {self_single_[c].get(), self_double_[c].get(), near_[c].single.get(), near_[c].double_.get()})
         if (k) k->release_folded();
     }
   }
   if (single_density_) {
     single_layer_ = regular_single_layer(*single_density_) + single_corrections;
+    domain_.ranks.sum(*single_layer_);
     single_plan_.reset();
-    for (int c = 0; c < nc; ++c) {
+    for (int c = owned_.begin; c < owned_.end; ++c) {
       self_single_[c].reset();
       near_[c].single.reset();
     }
   }
 }
 
+namespace {
+
+// Row t's source in the owned block [first, first + n) that coincides with it, or -1.
+std::vector<int> coincident_sources(int targets, int first, int n) {
+  std::vector<int> self(targets, -1);
+  for (int s = 0; s < n; ++s) self[first + s] = s;
+  return self;
+}
+
+}  // namespace
+
 Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
-  if (single_plan_) {
-    const PointField weighted = f.array().colwise() * nodes_.weight.array();
+  const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
+  if (domain_.box) {
+    if (!single_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);  // no cell owned here
+    const PointField weighted = owned_rows(f).array().colwise() * owned_rows(nodes_.weight).array();
     return single_plan_->single_layer(weighted);
   }
-  std::vector<int> self(nodes_.size());
-  for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
-  return regular_layer_sum(nodes_, f, LayerKernel{Layer::single, 0.0}, nodes_.x, self);
+  const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};
+  return regular_layer_sum(sources, owned_rows(f), LayerKernel{Layer::single, 0.0}, nodes_.x,
+                           coincident_sources(nodes_.size(), first, n));
+}
+
+Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
+  const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
+  if (domain_.box) {
+    if (!double_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);
+    const PointField q = owned_rows(u).array().colwise() * owned_rows(nodes_.weight).array();
+    const PointField normals = owned_rows(nodes_.normal);
+    Eigen::MatrixXd regular = double_plan_->double_layer(q, normals);
+    regular.rowwise() += double_layer_linear_part(*domain_.box, owned_rows(nodes_.x), q, normals, nodes_per_cell());
+    return regular;
+  }
+  const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};
+  return regular_layer_sum(sources, owned_rows(u), LayerKernel{Layer::double_, 0.0}, nodes_.x,
+                           coincident_sources(nodes_.size(), first, n));
 }
 
 PairShares CellLayers::folded_shares(Layer layer) const {
   const int np = nodes_per_cell();
   // Calls f(cell, target row, patch nodes) for every target of the layer's corrections.
+  // Sources are numbered within the owned block (the plans' sources).
+  const int first = owned_.begin * np;
   auto for_each_target = [&](auto&& f) {
-    for (int c = 0; c < num_cells(); ++c) {
+    for (int c = owned_.begin; c < owned_.end; ++c) {
       const LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
       for (int t = 0; t < self.num_targets(); ++t) f(c, c * np + t, self.folded(t));
       const NearCorrection& n = near_[c];
@@ -167,7 +219,7 @@ PairShares CellLayers::folded_shares(Layer layer) const {
   std::vector<std::int64_t> next(shares.offsets.begin(), shares.offsets.end() - 1);
   for_each_target([&](int c, int row, std::span<const PatchNode> nodes) {
     for (const PatchNode& e : nodes) {
-      shares.sources[next[row]] = c * np + e.node;
+      shares.sources[next[row]] = c * np + e.node - first;
       shares.shares[next[row]++] = e.eta;
     }
   });
@@ -177,9 +229,9 @@ PairShares CellLayers::folded_shares(Layer layer) const {
 CellLayers::~CellLayers() = default;
 
 int CellLayers::near_targets() const {
-  int n = 0;
-  for (const auto& nc : near_) n += static_cast<int>(nc.rows.size());
-  return n;
+  long n = 0;
+  for (const auto& nc : near_) n += static_cast<long>(nc.rows.size());
+  return static_cast<int>(domain_.ranks.sum(n));
 }
 
 Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& stacked, int c) const {
@@ -189,20 +241,20 @@ Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& stacked, int c) co
 Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd& density) {
   ScopedTimer timer(timings_.applied);
   const int nc = num_cells(), np = nodes_per_cell();
-  Eigen::MatrixXd out(density.rows(), 3);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(density.rows(), 3);  // rows of other ranks' cells stay zero
   std::vector<Eigen::MatrixXd> near(nc);
   // One cell per thread at a time (the corrections' own loops then run on that thread): one
   // parallel region per product instead of two per cell, and the density's patch data shared
   // by the cell's self and near corrections.
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
+  for (int c = owned_.begin; c < owned_.end; ++c) {
     const Eigen::MatrixXd block = cell_block(density, c);
     const HermiteData data = cells_[c]->patch_data(block);
     out.middleRows(c * np, np) = (layer == Layer::single ? self_single_[c] : self_double_[c])->apply(block, data);
     const NearCorrection& n = near_[c];
     if (!n.rows.empty()) near[c] = (layer == Layer::single ? n.single : n.double_)->apply(block, data);
   }
-  for (int c = 0; c < nc; ++c)
+  for (int c = owned_.begin; c < owned_.end; ++c)
     for (std::size_t k = 0; k < near_[c].rows.size(); ++k) out.row(near_[c].rows[k]) += near[c].row(k);
   return out;
 }
@@ -214,31 +266,26 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
       throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
     return *single_layer_;
   }
-  return regular_single_layer(f) + apply_corrections(Layer::single, f);
+  Eigen::MatrixXd u = regular_single_layer(f) + apply_corrections(Layer::single, f);
+  domain_.ranks.sum(u);
+  return u;
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
   if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
   if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
-  Eigen::MatrixXd regular;
-  if (double_plan_) {
-    const PointField q = u.array().colwise() * nodes_.weight.array();
-    regular = double_plan_->double_layer(q, nodes_.normal);
-    regular.rowwise() += double_layer_linear_part(*domain_.box, nodes_.x, q, nodes_.normal, nodes_per_cell());
-  } else {
-    std::vector<int> self(nodes_.size());
-    for (int t = 0; t < nodes_.size(); ++t) self[t] = t;
-    regular = regular_layer_sum(nodes_, u, LayerKernel{Layer::double_, 0.0}, nodes_.x, self);
-  }
-  return regular + apply_corrections(Layer::double_, u);
+  Eigen::MatrixXd v = regular_double_layer(u) + apply_corrections(Layer::double_, u);
+  domain_.ranks.sum(v);
+  return v;
 }
 
 void CellLayers::report_memory(MemoryReport& report) const {
   std::size_t geometry = matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight);
-  for (const auto& c : cells_) geometry += c->memory_bytes();
+  for (const auto& c : cells_)
+    if (c) geometry += c->memory_bytes();
   report.add("cell geometry", geometry);
   if (single_layer_) report.add("single layer of the step's traction", matrix_bytes(*single_layer_) + matrix_bytes(*single_density_));
-  for (int c = 0; c < num_cells(); ++c) {
+  for (int c = owned_.begin; c < owned_.end; ++c) {
     if (self_single_[c]) self_single_[c]->report_memory(report, "self corrections");
     if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", !self_single_[c]);
     const NearCorrection& n = near_[c];

@@ -11,6 +11,10 @@
 // real-space Ewald sums, which weight those pairs by 1 - eta (PairShares), not out of the
 // corrections.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
+// On several ranks (LayerDomain::ranks) each rank builds the corrections of the cells it owns
+// (parallel/ownership.h) and sums only their nodes as sources, at every target; a product is
+// the sum of the ranks' parts (Communicator::sum), the same on every rank. The cells it does
+// not own it holds as nodes only (positions, normals, weights).
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -19,6 +23,7 @@
 
 #include "geometry/surface/cell_grids.h"
 #include "libsolver/common/memory_report.h"
+#include "libsolver/parallel/ownership.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/common/periodic_box.h"
@@ -51,6 +56,7 @@ struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
   std::int64_t max_kept_pairs = kMaxKeptPairs;  // the Ewald plans' bound (ewald_plan.h)
+  Communicator ranks{};  // the ranks that share the products (default: one)
 };
 
 class CellLayers {
@@ -67,17 +73,19 @@ class CellLayers {
              SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr);
   ~CellLayers();
 
-  int num_cells() const { return static_cast<int>(cells_.size()); }
+  int num_cells() const { return num_cells_; }
   int nodes_per_cell() const { return grids_->n_grid->grid().size(); }
   const SourceNodes& nodes() const { return nodes_; }  // stacked
+  // The cells whose corrections this rank builds; only they have a quadrature geometry.
+  const OwnedRange& owned() const { return owned_; }
   const CellQuadratureGeometry& cell(int c) const { return *cells_[c]; }
   const std::shared_ptr<const CellQuadratureGeometry>& cell_geometry(int c) const { return cells_[c]; }
   const LayerDomain& domain() const { return domain_; }
   SpmeGridCache* grid_cache() const { return grid_cache_; }
-  bool has_double_layer() const { return self_double_[0] != nullptr; }
-  int near_targets() const;  // nearly-singular (target, source cell) pairs
+  bool has_double_layer() const { return with_double_layer_; }
+  int near_targets() const;  // nearly-singular (target, source cell) pairs, of all ranks
   const CellLayersTimings& build_timings() const { return timings_; }
-  // What the step's cell operator holds (common/memory_report.h): "cell geometry", "self
+  // What the step's cell operator holds on this rank (common/memory_report.h): "cell geometry", "self
   // corrections: ...", "near corrections: ...", "cell Ewald single/double: ...".
   void report_memory(MemoryReport& report) const;
 
@@ -91,8 +99,16 @@ class CellLayers {
     std::vector<int> rows;  // stacked target rows
   };
   Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density);
-  // The single layer's regular sums (SPME + real space, or direct in free space).
+  // The regular sums (SPME + real space, or direct in free space) of the owned cells' nodes
+  // as sources, at every node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
+  Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u);
+  // The owned cells' rows of stacked node data.
+  template <class Matrix>
+  auto owned_rows(const Matrix& stacked) const {
+    return stacked.middleRows(owned_.begin * nodes_per_cell(), owned_.size() * nodes_per_cell());
+  }
+  bool owns_all() const { return owned_.size() == num_cells(); }
   // The patch nodes the layer's corrections left to the real-space sum, by target row.
   PairShares folded_shares(Layer layer) const;
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
@@ -100,7 +116,9 @@ class CellLayers {
   std::shared_ptr<const CellGrids> grids_;
   LayerDomain domain_;
   SpmeGridCache* grid_cache_;
-  std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;
+  OwnedRange owned_;
+  int num_cells_ = 0;
+  std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;  // null where not owned
   SourceNodes nodes_;
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
@@ -108,6 +126,7 @@ class CellLayers {
   // With a single_layer_density: that density and its single layer (the corrections and the
   // single-layer plan above are then empty).
   std::optional<Eigen::MatrixXd> single_density_, single_layer_;
+  bool with_double_layer_ = true;
   CellLayersTimings timings_;
 };
 

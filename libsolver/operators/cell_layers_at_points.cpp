@@ -20,14 +20,17 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   const LayerDomain& domain = layers.domain();
   const int nc = layers.num_cells();
   const long ns = layers.nodes().size();
+  const OwnedRange& owned = layers.owned();
+  const int np = layers.nodes_per_cell();
   const bool with_double = layers.has_double_layer();
   double xi_single = 0.0, xi_double = 0.0;
-  if (domain.box) {
+  if (domain.box && !owned.empty()) {
     const PeriodicBox& box = *domain.box;
+    // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's sources.
     auto plan = [&](EwaldKernel kernel, double& xi) {
       auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows());
       xi = grid->parameters().xi;
-      auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_);
+      auto p = std::make_unique<EwaldPlan>(std::move(grid), PointField(owned_rows(layers.nodes().x)), points_);
       p->keep_pairs_up_to(domain.max_kept_pairs);
       return p;
     };
@@ -36,9 +39,8 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   }
   near_.resize(nc);
   std::vector<Eigen::MatrixXd> near_single(nc);
-  const int np = layers.nodes_per_cell();
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
+  for (int c = owned.begin; c < owned.end; ++c) {
     NearTargets near = find_near_targets(layers.cell(c), points_, domain.box);
     if (near.targets.empty()) continue;
     near_[c].rows = std::move(near.rows);
@@ -56,38 +58,47 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   }
   if (single_density_) {
     Eigen::MatrixXd corrections = Eigen::MatrixXd::Zero(points_.rows(), 3);
-    for (int c = 0; c < nc; ++c)
+    for (int c = owned.begin; c < owned.end; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) corrections.row(near_[c].rows[k]) += near_single[c].row(k);
     if (single_plan_) single_plan_->keep_pairs_up_to(0);  // one product: nothing to keep
     single_layer_ = regular_single_layer(*single_density_) + corrections;
+    domain.ranks.sum(*single_layer_);
     single_plan_.reset();
   }
 }
 
 Eigen::MatrixXd CellLayersAtPoints::regular_single_layer(const Eigen::MatrixXd& f) const {
+  if (layers_.domain().box) {
+    if (!single_plan_) return Eigen::MatrixXd::Zero(points_.rows(), 3);  // no cell owned here
+    return single_plan_->single_layer(owned_rows(f).array().colwise() * owned_rows(layers_.nodes().weight).array());
+  }
+  return regular_layer_sum(owned_sources(), owned_rows(f), LayerKernel{Layer::single, 0.0}, points_);
+}
+
+SourceNodes CellLayersAtPoints::owned_sources() const {
   const SourceNodes& nodes = layers_.nodes();
-  if (single_plan_) return single_plan_->single_layer(f.array().colwise() * nodes.weight.array());
-  return regular_layer_sum(nodes, f, LayerKernel{Layer::single, 0.0}, points_);
+  return {owned_rows(nodes.x), owned_rows(nodes.weight), owned_rows(nodes.normal)};
 }
 
 CellLayersAtPoints::~CellLayersAtPoints() = default;
 
 int CellLayersAtPoints::near_points() const {
-  int n = 0;
-  for (const Near& c : near_) n += static_cast<int>(c.rows.size());
-  return n;
+  long n = 0;
+  for (const Near& c : near_) n += static_cast<long>(c.rows.size());
+  return static_cast<int>(layers_.domain().ranks.sum(n));
 }
 
 Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::MatrixXd& density) const {
   const int nc = layers_.num_cells(), np = layers_.nodes_per_cell();
+  const OwnedRange& owned = layers_.owned();
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(points_.rows(), 3);
   std::vector<Eigen::MatrixXd> near(nc);
 #pragma omp parallel for schedule(dynamic)  // one cell per thread at a time, as in CellLayers
-  for (int c = 0; c < nc; ++c) {
+  for (int c = owned.begin; c < owned.end; ++c) {
     const Near& n = near_[c];
     if (!n.rows.empty()) near[c] = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(c * np, np));
   }
-  for (int c = 0; c < nc; ++c)
+  for (int c = owned.begin; c < owned.end; ++c)
     for (std::size_t k = 0; k < near_[c].rows.size(); ++k) out.row(near_[c].rows[k]) += near[c].row(k);
   return out;
 }
@@ -100,22 +111,30 @@ Eigen::MatrixXd CellLayersAtPoints::single_layer(const Eigen::MatrixXd& f) const
       throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
     return *single_layer_;
   }
-  return regular_single_layer(f) + corrections(Layer::single, f);
+  Eigen::MatrixXd u = regular_single_layer(f) + corrections(Layer::single, f);
+  layers_.domain().ranks.sum(u);
+  return u;
 }
 
 Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const {
   const SourceNodes& nodes = layers_.nodes();
   if (u.rows() != nodes.size() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
   if (!layers_.has_double_layer()) throw std::logic_error("CellLayersAtPoints::double_layer: built without the double layer");
-  Eigen::MatrixXd regular;
-  if (double_plan_) {
-    const PointField q = u.array().colwise() * nodes.weight.array();
-    regular = double_plan_->double_layer(q, nodes.normal);
-    regular.rowwise() += double_layer_linear_part(*layers_.domain().box, nodes.x, q, nodes.normal, layers_.nodes_per_cell());
+  Eigen::MatrixXd v;
+  if (layers_.domain().box) {
+    v = Eigen::MatrixXd::Zero(points_.rows(), 3);
+    if (double_plan_) {
+      const PointField q = owned_rows(u).array().colwise() * owned_rows(nodes.weight).array();
+      const PointField normals = owned_rows(nodes.normal);
+      v = double_plan_->double_layer(q, normals);
+      v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_rows(nodes.x), q, normals, layers_.nodes_per_cell());
+    }
   } else {
-    regular = regular_layer_sum(nodes, u, LayerKernel{Layer::double_, 0.0}, points_);
+    v = regular_layer_sum(owned_sources(), owned_rows(u), LayerKernel{Layer::double_, 0.0}, points_);
   }
-  return regular + corrections(Layer::double_, u);
+  v += corrections(Layer::double_, u);
+  layers_.domain().ranks.sum(v);
+  return v;
 }
 
 void CellLayersAtPoints::report_memory(MemoryReport& report, const std::string& prefix) const {

@@ -3,7 +3,8 @@
 // no-slip condition (7)): the same sums as CellLayers (direct in free space; SPME + real
 // space in a box, with the linear part of (3) for the double layer), and the nearly-singular
 // correction for every point closer to a cell than its near distance. Built once per time
-// step from the step's CellLayers; the products are linear in the densities.
+// step from the step's CellLayers; the products are linear in the densities. On several ranks,
+// as CellLayers: each rank sums its owned cells as sources, and a product is the ranks' sum.
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
@@ -38,7 +39,13 @@ class CellLayersAtPoints {
     std::vector<int> rows;
   };
   Eigen::MatrixXd corrections(Layer layer, const Eigen::MatrixXd& density) const;
-  Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f) const;
+  Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f) const;  // this rank's part
+  SourceNodes owned_sources() const;  // the nodes of the cells this rank owns
+  template <class Matrix>
+  auto owned_rows(const Matrix& stacked) const {
+    return stacked.middleRows(layers_.owned().begin * layers_.nodes_per_cell(),
+                              layers_.owned().size() * layers_.nodes_per_cell());
+  }
 
   const CellLayers& layers_;
   Eigen::MatrixXd points_;

@@ -75,6 +75,15 @@ CellQuadratureGeometry::CellQuadratureGeometry(const SHCoeffs& x, std::shared_pt
   near_ = options_.near_factor * std::sqrt(h_);
 }
 
+SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids) {
+  const SurfaceGeometry g = surface_geometry(x.resampled(grids.order), *grids.n_grid);
+  SourceNodes nodes;
+  nodes.x = g.x;
+  nodes.normal = g.normal;
+  nodes.weight = g.area_weight;
+  return nodes;
+}
+
 std::vector<QuadratureTarget> CellQuadratureGeometry::node_targets() const {
   const SphGrid& grid = grids_->n_grid->grid();
   std::vector<QuadratureTarget> t(grid.size());

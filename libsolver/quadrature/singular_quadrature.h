@@ -93,6 +93,11 @@ class CellQuadratureGeometry {
   double rho1_ = 0, h_ = 0, near_ = 0;
 };
 
+// The regular rule's nodes of a cell of order <= N (positions, unit normals and area weights on
+// the N grid), as CellQuadratureGeometry holds them: for the cells whose corrections another
+// rank builds (operators/cell_layers.h).
+SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids);
+
 // A node of the regular rule inside a target's patch, with its partition-of-unity weight eta:
 // the share of that node's regular term which the patch integral I_1 replaces.
 struct PatchNode {

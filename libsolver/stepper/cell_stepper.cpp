@@ -187,12 +187,22 @@ FlowSolution CellStepper::solve() const {
     if (options_.domain.box) {
       background.rowwise() = s.mean_velocity.transpose();
       if (wall_) {
-        if (!wall_at_cells) {
+        // Each rank evaluates the wall's velocity at its own cells' nodes; the ranks' rows add up.
+        const Communicator& ranks = options_.domain.ranks;
+        const OwnedRange& owned = layers->owned();
+        if (!wall_at_cells && !owned.empty()) {
           ScopedTimer timer(timing.wall_at_cells_build);
-          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x));
+          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x.middleRows(owned.begin * np, owned.size() * np),
+                                                   nc * np));
         }
         ScopedTimer timer(timing.wall_at_cells);
-        background += WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
+        Eigen::MatrixXd wall_velocity = Eigen::MatrixXd::Zero(nc * np, 3);
+        if (wall_at_cells) {
+          wall_velocity.middleRows(owned.begin * np, owned.size() * np) =
+              WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
+        }
+        ranks.sum(wall_velocity);
+        background += wall_velocity;
       }
     } else {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));

@@ -56,8 +56,9 @@ PointField WallCoupling::velocity_at(const PointField& points, const PointField&
   return velocity_at(op, force);
 }
 
-WallOperator WallCoupling::operator_at(const PointField& points) const {
-  return WallOperator(elements_, points, box_, ewald_tolerance_, grid_cache_.get());
+WallOperator WallCoupling::operator_at(const PointField& points, long chosen_for_points) const {
+  return WallOperator(elements_, points, box_, ewald_tolerance_, grid_cache_.get(), WallOperator::RealSpace::per_product,
+                      chosen_for_points);
 }
 
 PointField WallCoupling::velocity_at(WallOperator& at_points, const PointField& force) {

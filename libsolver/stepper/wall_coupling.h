@@ -38,8 +38,9 @@ class WallCoupling {
   // -(1/(8 pi mu)) N_W F at arbitrary points (the cell nodes), with the near-field correction.
   PointField velocity_at(const PointField& points, const PointField& force) const;
   // The same in two halves, for several forces at the same points (one step's cell nodes):
-  // the operator with `points` as targets, then the velocity for a force.
-  WallOperator operator_at(const PointField& points) const;
+  // the operator with `points` as targets, then the velocity for a force. chosen_for_points:
+  // as WallOperator's chosen_for_targets (one rank's share of the points).
+  WallOperator operator_at(const PointField& points, long chosen_for_points = 0) const;
   static PointField velocity_at(WallOperator& at_points, const PointField& force);
   void report_memory(MemoryReport& report) const {
     solver_.report_memory(report);

@@ -24,12 +24,13 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
-                           RealSpace real_space)
+                           RealSpace real_space, long chosen_for_targets)
     : WallOperator(std::move(elements), targets) {
   const long n = elements_->points.rows();
   const RealSpaceUse use = real_space == RealSpace::assembled ? kAssembledRealSpace : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
-  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, targets.rows(), use),
+  const long m = chosen_for_targets > 0 ? chosen_for_targets : targets.rows();
+  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, m, use),
                  wrapped(elements_->points, box), wrapped(targets_, box));
   if (real_space == RealSpace::assembled) {
     near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),

@@ -27,10 +27,12 @@ class WallOperator {
   // the real-space sum is evaluated at every product or assembled once as a sparse matrix (for
   // an operator applied many times, the wall solve; the choice then favours a large cutoff and a coarse grid, at a tenth of the tolerance:
   // kAssembledRealSpace and kAssembledToleranceFactor in wall_real_space.h).
+  // `chosen_for_targets` > 0: the parameters are those of that many targets, the whole set of
+  // which `targets` is one rank's share (the same grid on every rank and as on one).
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
-               RealSpace real_space = RealSpace::per_product);
+               RealSpace real_space = RealSpace::per_product, long chosen_for_targets = 0);
 
 
   // N_W f at the targets, one row each; f one row per wall node.

@@ -1,0 +1,126 @@
+// The cells' layers shared by the ranks (operators/cell_layers.h, parallel/ownership.h): run
+// under mpirun -np 2 (tests/libsolver/parallel/CMakeLists.txt), every product of CellLayers and
+// CellLayersAtPoints on the world's ranks equals the same product on one rank, computed on each
+// rank alone, to the rounding of a sum taken in another order; and it is the same on every rank.
+// Run on one process, the same tests compare one rank with itself (and pass trivially).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "geometry/surface/reference_shapes.h"
+#include "libsolver/operators/cell_layers.h"
+#include "libsolver/operators/cell_layers_at_points.h"
+
+using namespace rbcflow;
+
+namespace {
+
+// Three red cells, two of them close enough for nearly-singular corrections: on two ranks
+// rank 0 owns cells 0 and 1, rank 1 cell 2, and the near targets cross the ranks.
+std::vector<SHCoeffs> three_cells(int N) {
+  SHSurface a = make_biconcave(N), b = make_biconcave(N), c = make_biconcave(N);
+  a.translate(Eigen::Vector3d(2.0, 2.0, 2.0));
+  b.translate(Eigen::Vector3d(2.1, 2.3, 2.95));
+  c.translate(Eigen::Vector3d(2.2, 2.1, 3.9));
+  return {a.coeffs(), b.coeffs(), c.coeffs()};
+}
+
+Eigen::MatrixXd smooth_density(const PointField& x) {
+  Eigen::MatrixXd f(x.rows(), 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    f.row(i) << std::sin(x(i, 1)) + 0.2, x(i, 0) * x(i, 2), std::cos(x(i, 0) - x(i, 2));
+  return f;
+}
+
+double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / b.norm(); }
+
+// The largest difference of `m` between this rank and rank 0 (0 on one rank).
+double spread_over_ranks(const Communicator& ranks, const Eigen::MatrixXd& m) {
+  Eigen::MatrixXd root = ranks.root() ? m : Eigen::MatrixXd::Zero(m.rows(), m.cols()).eval();
+  ranks.sum(root);  // rank 0's values on every rank
+  return (m - root).cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+TEST(Ownership, BlocksCoverTheCellsInRankOrder) {
+  for (const int ranks : {1, 2, 3, 5}) {
+    for (const int n : {0, 1, 2, 7, 27}) {
+      int next = 0;
+      for (int r = 0; r < ranks; ++r) {
+        const OwnedRange b = owned_block(n, r, ranks);
+        EXPECT_EQ(b.begin, next) << n << " cells, rank " << r << " of " << ranks;
+        EXPECT_LE(b.size(), n / ranks + 1);
+        EXPECT_GE(b.size(), n / ranks);
+        next = b.end;
+      }
+      EXPECT_EQ(next, n);
+    }
+  }
+}
+
+TEST(DistributedLayers, ProductsOnTheRanksEqualOneRank) {
+  const Communicator world = Communicator::world();
+  std::printf("  %d rank(s)\n", world.size());
+  const int N = 12;
+  const auto grids = CellGrids::make(N, 2 * N);
+  for (const bool periodic : {true, false}) {
+    LayerDomain one;
+    if (periodic) one = LayerDomain{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+    LayerDomain shared = one;
+    shared.ranks = world;
+    CellLayers serial(three_cells(N), grids, one);
+    CellLayers distributed(three_cells(N), grids, shared);
+    ASSERT_EQ(distributed.near_targets(), serial.near_targets());
+    ASSERT_GT(serial.near_targets(), 0);
+    const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
+    const Eigen::MatrixXd u = smooth_density(serial.nodes().x + serial.nodes().normal);
+    const Eigen::MatrixXd single = distributed.single_layer(f), double_ = distributed.double_layer(u);
+    const double ds = relative(single, serial.single_layer(f)), dd = relative(double_, serial.double_layer(u));
+    std::printf("  %s: single layer %.1e, double layer %.1e from one rank's\n", periodic ? "periodic" : "free space",
+                ds, dd);
+    // Only the order of the sums differs: rounding, ~1e-16 per term over ~1e4 terms.
+    EXPECT_LT(ds, 1e-13);
+    EXPECT_LT(dd, 1e-13);
+    EXPECT_EQ(spread_over_ranks(world, single), 0.0);
+    EXPECT_EQ(spread_over_ranks(world, double_), 0.0);
+
+    // The step's one single-layer density, and the layers at points off the cells.
+    CellLayers once(three_cells(N), grids, shared, {}, true, nullptr, &f);
+    EXPECT_LT(relative(once.single_layer(f), serial.single_layer(f)), 1e-13);
+    Eigen::MatrixXd points(4, 3);
+    points << 2.0, 2.0, 2.6, 2.0, 2.0, 0.5, 3.5, 2.0, 2.0, 2.05, 2.15, 2.47;
+    const CellLayersAtPoints at_serial(serial, points), at_distributed(distributed, points);
+    const CellLayersAtPoints at_once(distributed, points, &f);
+    ASSERT_EQ(at_distributed.near_points(), at_serial.near_points());
+    ASSERT_GT(at_serial.near_points(), 0);
+    EXPECT_LT(relative(at_distributed.single_layer(f), at_serial.single_layer(f)), 1e-13);
+    EXPECT_LT(relative(at_once.single_layer(f), at_serial.single_layer(f)), 1e-13);
+    EXPECT_LT(relative(at_distributed.double_layer(u), at_serial.double_layer(u)), 1e-13);
+  }
+}
+
+// More ranks than cells: a rank that owns none takes part in every product with nothing.
+TEST(DistributedLayers, ARankWithoutCells) {
+  const Communicator world = Communicator::world();
+  const int N = 8;
+  const auto grids = CellGrids::make(N, 2 * N);
+  std::vector<SHCoeffs> cell{three_cells(N)[0]};
+  LayerDomain one{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+  LayerDomain shared = one;
+  shared.ranks = world;
+  CellLayers serial(cell, grids, one), distributed(cell, grids, shared);
+  EXPECT_EQ(distributed.owned().size(), world.rank() == 0 ? 1 : 0);
+  const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
+  EXPECT_LT(relative(distributed.double_layer(f), serial.double_layer(f)), 1e-13);
+  EXPECT_LT(relative(distributed.single_layer(f), serial.single_layer(f)), 1e-13);
+}
+
+int main(int argc, char** argv) {
+  MpiSession mpi(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int failed = RUN_ALL_TESTS();
+  // Every rank's verdict: a failure on any rank fails the test on rank 0 too.
+  return Communicator::world().sum(static_cast<long>(failed != 0)) > 0 ? 1 : 0;
+}
