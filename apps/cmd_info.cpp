@@ -1,4 +1,4 @@
-// rbcflow info: version, the libraries found and the OpenMP thread count.
+// rbcflow info: version, the libraries found, the OpenMP thread count and the MPI ranks.
 #include <CGAL/version.h>
 #include <H5public.h>
 #include <fftw3.h>
@@ -12,6 +12,7 @@
 #include <toml.hpp>
 
 #include "cli.h"
+#include "libsolver/parallel/communicator.h"
 #include "rbcflow_version.h"
 
 namespace rbcflow::cli {
@@ -32,7 +33,7 @@ std::string gmsh_version() {
 
 int run_info(Args& args) {
   if (args.help_requested()) {
-    std::printf("usage: rbcflow info\n  Prints the version, the libraries found and the OpenMP thread count.\n");
+    std::printf("usage: rbcflow info\n  Prints the version, the libraries found, the OpenMP thread count and the MPI ranks.\n");
     return 0;
   }
   args.finish();
@@ -50,7 +51,11 @@ int run_info(Args& args) {
   std::printf("  toml11   %d.%d.%d\n", TOML11_VERSION_MAJOR, TOML11_VERSION_MINOR, TOML11_VERSION_PATCH);
   std::printf("  Boost    %d.%d.%d\n", BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000, BOOST_VERSION % 100);
   std::printf("  OpenMP   %d (spec date)\n", _OPENMP);
+  if (built_with_mpi()) std::printf("  MPI      %s\n", mpi_library_version().c_str());
   std::printf("threads:   %d (OpenMP; set OMP_NUM_THREADS to change)\n", omp_get_max_threads());
+  const Communicator ranks = Communicator::world();
+  std::printf("parallel:  %s%s\n", ranks_and_threads(ranks.size(), omp_get_max_threads()).c_str(),
+              built_with_mpi() ? " (mpirun -np P rbcflow run CASE.toml: P ranks)" : " (built without MPI: one rank)");
   return 0;
 }
 

@@ -1,5 +1,6 @@
 // rbcflow run: parse the arguments, check the case and the output directory, run (scenario/run.h).
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -7,6 +8,7 @@
 #include "display.h"
 #include "io/case.h"
 #include "io/output_dir.h"
+#include "libsolver/parallel/communicator.h"
 #include "scenario/run.h"
 #include "thread_handover.h"
 
@@ -38,7 +40,8 @@ void print_help() {
       "  exactly as the uninterrupted run would have. A directory that holds another run is\n"
       "  refused unless --overwrite (which first removes that run's files) or the restart\n"
       "  continues that run. Exit 0 on success, 2 for a bad case or\n"
-      "  argument, 1 when the run fails (the message names the step and the last checkpoint).\n");
+      "  argument, 1 when the run fails (the message names the step and the last checkpoint).\n"
+      "  mpirun -np P rbcflow run ... runs the same case on P ranks with the same output.\n");
 }
 
 }  // namespace
@@ -68,7 +71,17 @@ int run_run(Args& args) {
   request.restart = restart;
   request.threads_handed_over = threads_handed_over;  // from rbcflow study --jobs
   check_run_directory(request, "--overwrite", "--restart");
-  if (request.c.output.render) ensure_display();  // before any work: without a display the command restarts under Xvfb
+  if (request.c.output.render) {
+    if (Communicator::world().size() > 1 && !std::getenv("DISPLAY")) {
+      // The ranks cannot restart themselves under Xvfb (mpirun started them): no renders.
+      request.c.output.render = false;
+      if (Communicator::world().root())
+        std::printf("renders: off, no X display on %d ranks (run mpirun under xvfb-run -a, or render the frames "
+                    "afterwards with rbcflow render %s)\n", Communicator::world().size(), request.c.output.dir.c_str());
+    } else {
+      ensure_display();  // before any work: without a display the command restarts under Xvfb
+    }
+  }
   run_case(request);
   return 0;
 }

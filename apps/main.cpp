@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "io/input_error.h"
+#include "libsolver/parallel/communicator.h"
 #include "libsolver/stepper/step_memory.h"
 
 namespace {
@@ -25,10 +26,26 @@ void print_usage() {
       "Run 'rbcflow COMMAND --help' for the arguments of a command.\n");
 }
 
+// Reports a failure and returns its exit status. Under mpirun rank 0 reports as a single process
+// does and another rank names itself, except for bad input, which every rank read alike; one
+// rank's failure ends them all (the others would wait for it).
+int fail(const std::string& command, const char* kind, const char* what, int status, bool every_rank) {
+  const rbcflow::Communicator ranks = rbcflow::Communicator::world();
+  if (ranks.root()) {
+    std::fprintf(stderr, "rbcflow %s: %s%s\n", command.c_str(), kind, what);
+  } else if (every_rank) {
+    std::fprintf(stderr, "rbcflow %s (rank %d): %s%s\n", command.c_str(), ranks.rank(), kind, what);
+  }
+  std::fflush(stderr);
+  rbcflow::MpiSession::abort_all(status);
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace rbcflow::cli;
+  rbcflow::MpiSession mpi(argc, argv);  // only when started by mpirun
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     print_usage();
     return argc < 2 ? 2 : 0;
@@ -37,6 +54,8 @@ int main(int argc, char** argv) {
   rbcflow::reuse_freed_memory();  // time steps reuse the pages of the steps before
   Args args(command, std::vector<std::string>(argv + 2, argv + argc));
   try {
+    if (rbcflow::Communicator::world().size() > 1 && command != "run" && command != "info")
+      throw UsageError("rbcflow " + command + ": runs as one process; of the commands only run (and info) take mpirun -np P");
     if (command == "run") return run_run(args);
     if (command == "info") return run_info(args);
     if (command == "shape") return run_shape(args);
@@ -48,13 +67,12 @@ int main(int argc, char** argv) {
     print_usage();
     return 2;
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    if (rbcflow::Communicator::world().root()) std::fprintf(stderr, "%s\n", e.what());
+    rbcflow::MpiSession::abort_all(2);
     return 2;
   } catch (const rbcflow::InputError& e) {
-    std::fprintf(stderr, "rbcflow %s: %s\n", command.c_str(), e.what());
-    return 2;
+    return fail(command, "", e.what(), 2, false);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rbcflow %s: error: %s\n", command.c_str(), e.what());
-    return 1;
+    return fail(command, "error: ", e.what(), 1, true);
   }
 }

@@ -16,6 +16,7 @@
 #include "io/render.h"
 #include "io/vtk_series.h"
 #include "io/xdmf_writer.h"
+#include "libsolver/parallel/communicator.h"
 #include "scenario/branch_monitor.h"
 #include "scenario/checkpoint.h"
 #include "scenario/derived.h"
@@ -141,6 +142,8 @@ class RunOutput {
 
 struct Run::State {
   RunRequest request;
+  // On several ranks every rank steps the same replicated state; rank 0 alone writes and prints.
+  Communicator ranks = Communicator::world();
   Scenario scenario;
   std::unique_ptr<CellStepper> stepper;
   std::optional<long> resume;
@@ -178,10 +181,12 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   }
   r.first = stepper.steps();
   r.last = r.request.steps > 0 ? r.first + r.request.steps : r.scenario.steps;
-  if (!quiet) {
+  const bool root = r.ranks.root();
+  if (!quiet && root) {
     std::printf("%s: %zu cells, dt = %.4g%s, steps %ld..%ld, output in %s\n", c.source.file.c_str(),
                 stepper.cells().size(), stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", r.first,
                 r.last, c.output.dir.c_str());
+    std::printf("parallel: %s\n", ranks_and_threads(r.ranks.size(), omp_get_max_threads()).c_str());
     if (r.scenario.placement_note) std::printf("%s\n", r.scenario.placement_note->c_str());
     if (const std::optional<double> U = r.scenario.options.tube_velocity) {
       const Eigen::Vector3d& u = stepper.mean_velocity();
@@ -192,6 +197,8 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
     std::fflush(stdout);
   }
 
+  r.progress.emplace(quiet || !root, r.first, r.last);
+  if (!root) return;
   // Only now that the case has been prepared: a case that fails leaves the earlier run as it was.
   if (r.request.overwrite && !(r.resume && restarts_in_place(r.request.restart, c.output.dir))) {
     clear_run(c.output.dir);
@@ -204,7 +211,6 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   }
   write_case_toml(c, c.output.dir / "case.toml");
   r.output.emplace(c, r.scenario, stepper, r.resume);
-  r.progress.emplace(quiet, r.first, r.last);
 }
 
 Run::~Run() = default;
@@ -224,19 +230,23 @@ void Run::step() {
     const int threads = r.request.threads_handed_over ? r.request.threads_handed_over() : 0;
     if (threads > 0 && threads != omp_get_max_threads()) {
       omp_set_num_threads(threads);
-      if (!r.request.quiet) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
+      if (!r.request.quiet && r.ranks.root()) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
     }
     const auto t0 = Clock::now();
     const FlowSolution s = stepper.solve();
+    r.ranks.check_same(s.gmres_cells, "the cells' GMRES iterations");
+    r.ranks.check_same(s.gmres_wall, "the wall's GMRES iterations");
     const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
-    if (n % c.output.every == 0 && !resumed_here) r.output->frame(stepper, s);
-    if (c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here) {
+    if (r.output && n % c.output.every == 0 && !resumed_here) r.output->frame(stepper, s);
+    if (r.output && c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here) {
       r.output->render(stepper, s);
     }
     const StepReport report = stepper.advance(s);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    r.output->diagnostics().write(diagnostics_row(stepper, report, r.scenario, seconds));
-    r.output->branches(stepper, report);
+    if (r.output) {
+      r.output->diagnostics().write(diagnostics_row(stepper, report, r.scenario, seconds));
+      r.output->branches(stepper, report);
+    }
     if (report.max_volume_error > kMaxVolumeError) {
       char what[160];
       std::snprintf(what, sizeof what, "a cell's volume changed by %.3g%% at step %ld", 100 * report.max_volume_error,
@@ -246,7 +256,7 @@ void Run::step() {
     }
     if (c.output.checkpoint_every > 0 && stepper.steps() % c.output.checkpoint_every == 0) {
       r.last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());
-      write_checkpoint(stepper, c, *r.last_checkpoint);
+      if (r.output) write_checkpoint(stepper, c, *r.last_checkpoint);
     }
     r.progress->update(stepper.steps(), stepper.time(), seconds);
   });
@@ -262,10 +272,12 @@ void Run::finish() {
     CellStepper& stepper = *r.stepper;
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
-      const FlowSolution s = stepper.solve();
+      const FlowSolution s = stepper.solve();  // on every rank: its products are shared
+      if (!r.output) return;
       r.output->frame(stepper, s);
       if (c.output.render) r.output->render(stepper, s);
     }
+    if (!r.output) return;
     const int every = c.output.checkpoint_every;
     if (every > 0 && n % every != 0) {
       r.last_checkpoint = checkpoint_path(c.output.dir, n);
@@ -276,7 +288,7 @@ void Run::finish() {
 }
 
 void Run::checkpoint(const fs::path& file) {
-  write_checkpoint(*state_->stepper, state_->request.c, file);
+  if (state_->ranks.root()) write_checkpoint(*state_->stepper, state_->request.c, file);
   state_->last_checkpoint = file;
 }
 
@@ -298,7 +310,7 @@ void run_case(const RunRequest& request) {
   Run run(request);
   while (!run.done()) run.step();
   run.finish();
-  if (!request.quiet) {
+  if (!request.quiet && Communicator::world().root()) {
     std::printf("done: %ld steps, t = %.5g, output in %s\n", run.last_step() - run.first_step(), run.stepper().time(),
                 request.c.output.dir.c_str());
   }
