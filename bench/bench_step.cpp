@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "libsolver/parallel/communicator.h"
 #include "libsolver/stepper/step_memory.h"
 #include "step_cases.h"
 
@@ -60,6 +61,10 @@ void print_row(const char* label, double step, double cpu, const StepTimings& t,
 }  // namespace
 
 int main(int argc, char** argv) {
+  MpiSession mpi(argc, argv);  // mpirun -np P bench_step CASE: the step on P ranks
+  const Communicator ranks = Communicator::world();
+  // Rank 0 prints the table; every other rank only its peak memory (on stderr), at the end.
+  if (!ranks.root() && !std::freopen("/dev/null", "w", stdout)) return 1;
   if (argc < 2) {
     std::fprintf(stderr, "usage: bench_step single|minicase|tubeK [--steps K]  (tubeK: K cells, e.g. tube27)\n");
     return 2;
@@ -75,8 +80,9 @@ int main(int argc, char** argv) {
     bench::StepCase step_case = bench::make_step_case(name);
     auto& stepper = step_case.stepper;
     const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("case %s: %zu cells, %d threads, set-up %.2f s, peak memory after set-up %.0f MB\n", name.c_str(),
-                stepper->cells().size(), omp_get_max_threads(), setup, peak_resident_mb());
+    std::printf("case %s: %zu cells, %s, set-up %.2f s, peak memory after set-up %.0f MB\n", name.c_str(),
+                stepper->cells().size(), ranks_and_threads(ranks.size(), omp_get_max_threads()).c_str(), setup,
+                peak_resident_mb());
     std::printf("%-6s %8s %8s", "step", "total", "cpu");
     for (const Column& c : kColumns) std::printf(" %10s", c.name);
     std::printf(" %6s %6s\n", "it_c", "it_w");
@@ -109,6 +115,7 @@ int main(int argc, char** argv) {
     std::printf("  %-52s %8.3f\n", "total", memory.total() / 1048576.0 / cells);
     std::printf("peak memory %.0f MB (%.1f MB per cell); rbcflow check's estimate %.0f MB\n", peak_mb, peak_mb / cells,
                 step_case.estimated_peak_bytes / 1048576.0);
+    if (!ranks.root()) std::fprintf(stderr, "rank %d: peak memory %.0f MB\n", ranks.rank(), peak_mb);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());
     return 1;
