@@ -1,8 +1,10 @@
 // rbcflow: red blood cells in Stokes flow by the spectral boundary integral method.
 // Thin: parse the command, call the library, report. Errors are caught here, once.
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli.h"
@@ -28,7 +30,9 @@ void print_usage() {
 
 // Reports a failure and returns its exit status. Under mpirun rank 0 reports as a single process
 // does and another rank names itself, except for bad input, which every rank read alike; one
-// rank's failure ends them all (the others would wait for it).
+// rank's failure ends them all (the others would wait for it). A failure of the replicated
+// state happens on every rank at once: the other ranks wait 2 s before ending the run, so that
+// rank 0's message is written before MPI_Abort stops it.
 int fail(const std::string& command, const char* kind, const char* what, int status, bool every_rank) {
   const rbcflow::Communicator ranks = rbcflow::Communicator::world();
   if (ranks.root()) {
@@ -37,6 +41,7 @@ int fail(const std::string& command, const char* kind, const char* what, int sta
     std::fprintf(stderr, "rbcflow %s (rank %d): %s%s\n", command.c_str(), ranks.rank(), kind, what);
   }
   std::fflush(stderr);
+  if (!ranks.root()) std::this_thread::sleep_for(std::chrono::seconds(2));
   rbcflow::MpiSession::abort_all(status);
   return status;
 }
