@@ -28,7 +28,10 @@ class Communicator {
   // rank 0 and broadcast (an all-reduce may round differently on different ranks, and the
   // replicated GMRES must not diverge).
   void sum(std::span<double> values) const;
-  void sum(Eigen::MatrixXd& values) const { sum(std::span<double>(values.data(), static_cast<std::size_t>(values.size()))); }
+  template <class Derived>  // a dense Eigen matrix or vector of doubles
+  void sum(Eigen::PlainObjectBase<Derived>& values) const {
+    sum(std::span<double>(values.data(), static_cast<std::size_t>(values.size())));
+  }
   long sum(long value) const;
   // Throws std::runtime_error naming `what` when the ranks hold different values of it (a
   // replicated quantity that diverged: the run cannot go on consistently).

@@ -35,6 +35,7 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
   }
   if (options_.wall) {
     if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
+    options_.wall_solve.ranks = options_.domain.ranks;  // the wall's rows shared by the cells' ranks
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
                                            options_.wall_solve);
     if (options_.collision_threshold > 0 || !cells_.empty())  // collisions; the cells' gap to the wall

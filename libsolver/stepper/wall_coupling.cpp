@@ -12,7 +12,7 @@ WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const Perio
       ewald_tolerance_(ewald_tolerance),
       options_(options),
       solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance, grid_cache_.get(),
-                           WallOperator::RealSpace::assembled)) {
+                           WallOperator::RealSpace::assembled, 0, options.ranks)) {
   if (options_.recycle > 0) unit_forces();  // the seeds of the recycled Krylov space
 }
 

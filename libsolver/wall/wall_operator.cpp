@@ -24,8 +24,9 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
-                           RealSpace real_space, long chosen_for_targets)
+                           RealSpace real_space, long chosen_for_targets, Communicator ranks)
     : WallOperator(std::move(elements), targets) {
+  ranks_ = ranks;
   const long n = elements_->points.rows();
   const RealSpaceUse use = real_space == RealSpace::assembled ? kAssembledRealSpace : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
@@ -34,7 +35,8 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                  wrapped(elements_->points, box), wrapped(targets_, box));
   if (real_space == RealSpace::assembled) {
     near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),
-                                                  Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction)));
+                                                  Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction),
+                                                  owned_block(static_cast<int>(targets_.rows()), ranks_)));
     node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
     ewald_->release_real_space();  // held in near_and_real_ now
   }
@@ -49,7 +51,8 @@ PointField WallOperator::apply(const PointField& f) {
       const double self = ewald_real_stokeslet_self(ewald_->xi());
       for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
     }
-    const Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
+    Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
+    ranks_.sum(rest);  // the ranks' rows
     return u + to_field(rest);
   }
   const PointField density = elements_->weighted_density(f);

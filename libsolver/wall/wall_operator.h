@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "libsolver/parallel/communicator.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/spme/spme_grid_cache.h"
@@ -29,10 +30,14 @@ class WallOperator {
   // kAssembledRealSpace and kAssembledToleranceFactor in wall_real_space.h).
   // `chosen_for_targets` > 0: the parameters are those of that many targets, the whole set of
   // which `targets` is one rank's share (the same grid on every rank and as on one).
+  // `ranks` (RealSpace::assembled): each rank assembles the rows of its block of the targets
+  // and a product adds the ranks' rows (disjoint: the same bits as on one rank); the smooth
+  // part is computed on every rank.
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
-               RealSpace real_space = RealSpace::per_product, long chosen_for_targets = 0);
+               RealSpace real_space = RealSpace::per_product, long chosen_for_targets = 0,
+               Communicator ranks = {});
 
 
   // N_W f at the targets, one row each; f one row per wall node.
@@ -53,7 +58,8 @@ class WallOperator {
   // Periodic box, RealSpace::assembled: the real-space part of the Ewald sum as a sparse matrix
   // (wall_real_space.h) plus the near-field correction, for an operator applied many times at
   // fixed targets (the wall solve). Products change by rounding only.
-  std::optional<SymmetricBlockMatrix> near_and_real_;
+  std::optional<SymmetricBlockMatrix> near_and_real_;  // this rank's rows
+  Communicator ranks_;
   // ... and the SPME spreading of the Gauss points' densities as one matrix on the nodal
   // densities (SpmeStencils::spreading_matrix of WallElements::density_map).
   std::optional<SpmeStencils::SpreadingMatrix> node_spreading_;

@@ -7,6 +7,7 @@
 // one sparse product over nodes instead of a kernel evaluation per (target, Gauss point) pair.
 #include <Eigen/SparseCore>
 
+#include "libsolver/parallel/ownership.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/neighbor_list.h"
 #include "symmetric_block_matrix.h"
@@ -32,8 +33,10 @@ inline constexpr double kAssembledToleranceFactor = 0.1;
 Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& elements, const NeighborList& pairs, double xi);
 // The same plus `plus` (the near-field correction: NearField::correction) as symmetric blocks,
 // assembled row by row: the operator's form (wall_operator.h), without the scalar matrices in
-// between, which took ten times its memory at the peak of the set-up.
+// between, which took ten times its memory at the peak of the set-up. Only the targets in
+// `rows` get their blocks (a rank's share, parallel/ownership.h); the others' rows stay empty.
 SymmetricBlockMatrix wall_real_space_blocks(const WallElements& elements, const NeighborList& pairs, double xi,
-                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus);
+                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus,
+                                            OwnedRange rows);
 
 }  // namespace rbcflow

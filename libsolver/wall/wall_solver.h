@@ -21,6 +21,8 @@ struct WallSolveOptions {
   // Krylov recycling (preconditioned_gmres.h): the number of directions kept from the
   // seed solves (WallSolver::seed) and deflated in every later solve; 0: none.
   int recycle = 150;
+  // The ranks that share the wall operator's assembled rows (wall_operator.h); default one.
+  Communicator ranks{};
 };
 
 struct WallSolution {

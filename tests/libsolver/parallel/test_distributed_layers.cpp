@@ -9,6 +9,8 @@
 #include <stdexcept>
 
 #include "geometry/surface/reference_shapes.h"
+#include "geometry/vessel/vessel.h"
+#include "libsolver/wall/wall_solver.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/cell_layers_at_points.h"
 
@@ -115,6 +117,24 @@ TEST(DistributedLayers, ARankWithoutCells) {
   const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
   EXPECT_LT(relative(distributed.double_layer(f), serial.double_layer(f)), 1e-13);
   EXPECT_LT(relative(distributed.single_layer(f), serial.single_layer(f)), 1e-13);
+}
+
+// The wall solve with the assembled rows shared by the ranks (wall_operator.h): the ranks' rows
+// are disjoint, so every product, and the solve, has the same bits as on one rank.
+TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
+  TubeSpec spec;
+  spec.diameter = 3.2;
+  spec.box = Eigen::Vector3d(4.0, 4.0, 4.0);
+  spec.element_size = 0.5;
+  auto e = std::make_shared<const WallElements>(tube(spec));
+  const PeriodicBox box(spec.box);
+  const auto assembled = WallOperator::RealSpace::assembled;
+  WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled));
+  WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, Communicator::world()));
+  const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
+  const WallSolution a = one.solve(v, 1.0), b = shared.solve(v, 1.0);
+  EXPECT_EQ(a.gmres.iterations, b.gmres.iterations);
+  EXPECT_EQ((a.force - b.force).cwiseAbs().maxCoeff(), 0.0);
 }
 
 int main(int argc, char** argv) {

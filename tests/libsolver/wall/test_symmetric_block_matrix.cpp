@@ -69,10 +69,19 @@ TEST(SymmetricBlockMatrix, HoldsTheWallNearFieldAndRealSpaceParts) {
   const Eigen::VectorXd expected = m * f;
   EXPECT_LT((b * f - expected).norm(), 1e-14 * expected.norm());
   // Assembled row by row (the operator's way), without the scalar matrix: the same blocks.
-  const SymmetricBlockMatrix rows =
-      wall_real_space_blocks(e, pairs, c.parameters.xi, Eigen::SparseMatrix<double, Eigen::RowMajor>(near_field(e, nodes).correction));
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> near = near_field(e, nodes).correction;
+  const int n = static_cast<int>(nodes.rows());
+  const SymmetricBlockMatrix rows = wall_real_space_blocks(e, pairs, c.parameters.xi, near, OwnedRange{0, n});
   EXPECT_EQ(rows.num_blocks(), b.num_blocks());
   EXPECT_LT((rows * f - expected).norm(), 1e-14 * expected.norm());
+  // Two ranks' shares of the rows: each only its own, and together the whole product exactly.
+  const SymmetricBlockMatrix first = wall_real_space_blocks(e, pairs, c.parameters.xi, near, owned_block(n, 0, 2));
+  const SymmetricBlockMatrix second = wall_real_space_blocks(e, pairs, c.parameters.xi, near, owned_block(n, 1, 2));
+  EXPECT_EQ(first.num_blocks() + second.num_blocks(), rows.num_blocks());
+  const Eigen::VectorXd a = first * f, z = second * f, whole = rows * f;
+  EXPECT_TRUE(a.tail(3 * (n - owned_block(n, 0, 2).end)).isZero(0.0));
+  EXPECT_TRUE(z.head(3 * owned_block(n, 1, 2).begin).isZero(0.0));
+  EXPECT_EQ(a + z, whole);
 }
 
 TEST(SymmetricBlockMatrix, RejectsWhatItCannotHold) {
