@@ -58,12 +58,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   std::array<double, 2> fold_radius{0.0, 0.0};
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
-    single_grid = ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np);
+    single_grid = ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np, -1, {},
+                             domain_.ranks);
     xi_single = single_grid->parameters().xi;
     fold_radius[0] = pair_share_radius(box, single_grid->parameters().cutoff);
     if (with_double_layer) {
       double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
-                               double_layer_real_space(domain_.max_kept_pairs));
+                               double_layer_real_space(domain_.max_kept_pairs), domain_.ranks);
       xi_double = double_grid->parameters().xi;
       fold_radius[1] = pair_share_radius(box, double_grid->parameters().cutoff);
     }
@@ -124,14 +125,15 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     for (int c = owned_.begin; c < owned_.end; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) single_corrections.row(near_[c].rows[k]) += near_single[c].row(k);
   }
-  if (domain_.box && !owned_.empty()) {
+  // A rank without cells takes part in the transforms of a grid split over the ranks.
+  if (domain_.box && (!owned_.empty() || single_grid->distributed())) {
     ScopedTimer plans_timer(timings_.geometry);
     // One rank: the nodes are sources and targets (the stencils shared); several: the owned
-    // cells' nodes are the sources, every node a target.
+    // cells' nodes are the real-space sources, every node a target (ewald_plan.h).
     auto plan = [&](std::shared_ptr<const SpmeGrid> grid, Layer layer) {
+      const SourceRows rows{owned_.begin * np, owned_.end * np};
       return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, folded_shares(layer))
-                        : std::make_unique<EwaldPlan>(std::move(grid), PointField(owned_rows(nodes_.x)), nodes_.x,
-                                                      folded_shares(layer));
+                        : std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, nodes_.x, rows, folded_shares(layer));
     };
     single_plan_ = plan(single_grid, Layer::single);
     // Applied once when the single layer is computed here: nothing to keep.
@@ -172,7 +174,7 @@ Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
   const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
   if (domain_.box) {
     if (!single_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);  // no cell owned here
-    const PointField weighted = owned_rows(f).array().colwise() * owned_rows(nodes_.weight).array();
+    const PointField weighted = f.array().colwise() * nodes_.weight.array();
     return single_plan_->single_layer(weighted);
   }
   const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};
@@ -184,10 +186,11 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
   const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
   if (domain_.box) {
     if (!double_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);
-    const PointField q = owned_rows(u).array().colwise() * owned_rows(nodes_.weight).array();
-    const PointField normals = owned_rows(nodes_.normal);
-    Eigen::MatrixXd regular = double_plan_->double_layer(q, normals);
-    regular.rowwise() += double_layer_linear_part(*domain_.box, owned_rows(nodes_.x), q, normals, nodes_per_cell());
+    const PointField q = u.array().colwise() * nodes_.weight.array();
+    Eigen::MatrixXd regular = double_plan_->double_layer(q, nodes_.normal);
+    const PointField owned_q = owned_rows(q), owned_normals = owned_rows(nodes_.normal);
+    regular.rowwise() +=
+        double_layer_linear_part(*domain_.box, owned_rows(nodes_.x), owned_q, owned_normals, nodes_per_cell());
     return regular;
   }
   const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};

@@ -24,13 +24,18 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   const int np = layers.nodes_per_cell();
   const bool with_double = layers.has_double_layer();
   double xi_single = 0.0, xi_double = 0.0;
-  if (domain.box && !owned.empty()) {
+  if (domain.box) {
     const PeriodicBox& box = *domain.box;
-    // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's sources.
-    auto plan = [&](EwaldKernel kernel, double& xi) {
-      auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows());
+    // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's
+    // real-space sources (ewald_plan.h). A rank without cells takes part in the transforms of
+    // a grid split over the ranks.
+    auto plan = [&](EwaldKernel kernel, double& xi) -> std::unique_ptr<EwaldPlan> {
+      auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows(), {},
+                             domain.ranks);
       xi = grid->parameters().xi;
-      auto p = std::make_unique<EwaldPlan>(std::move(grid), PointField(owned_rows(layers.nodes().x)), points_);
+      if (owned.empty() && !grid->distributed()) return nullptr;
+      auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_,
+                                           SourceRows{owned.begin * np, owned.end * np});
       p->keep_pairs_up_to(domain.max_kept_pairs);
       return p;
     };
@@ -70,7 +75,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
 Eigen::MatrixXd CellLayersAtPoints::regular_single_layer(const Eigen::MatrixXd& f) const {
   if (layers_.domain().box) {
     if (!single_plan_) return Eigen::MatrixXd::Zero(points_.rows(), 3);  // no cell owned here
-    return single_plan_->single_layer(owned_rows(f).array().colwise() * owned_rows(layers_.nodes().weight).array());
+    return single_plan_->single_layer(f.array().colwise() * layers_.nodes().weight.array());
   }
   return regular_layer_sum(owned_sources(), owned_rows(f), LayerKernel{Layer::single, 0.0}, points_);
 }
@@ -124,10 +129,11 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
   if (layers_.domain().box) {
     v = Eigen::MatrixXd::Zero(points_.rows(), 3);
     if (double_plan_) {
-      const PointField q = owned_rows(u).array().colwise() * owned_rows(nodes.weight).array();
-      const PointField normals = owned_rows(nodes.normal);
-      v = double_plan_->double_layer(q, normals);
-      v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_rows(nodes.x), q, normals, layers_.nodes_per_cell());
+      const PointField q = u.array().colwise() * nodes.weight.array();
+      v = double_plan_->double_layer(q, nodes.normal);
+      const PointField owned_q = owned_rows(q), owned_normals = owned_rows(nodes.normal);
+      v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_rows(nodes.x), owned_q, owned_normals,
+                                              layers_.nodes_per_cell());
     }
   } else {
     v = regular_layer_sum(owned_sources(), owned_rows(u), LayerKernel{Layer::double_, 0.0}, points_);

@@ -36,6 +36,9 @@ class Communicator {
   // Throws std::runtime_error naming `what` when the ranks hold different values of it (a
   // replicated quantity that diverged: the run cannot go on consistently).
   void check_same(long value, const std::string& what) const;
+  // The MPI communicator as its Fortran handle (MPI_Comm_c2f), -1 for one rank: for the other
+  // files of libsolver/parallel, which call MPI libraries themselves (slab_fft.h).
+  int mpi_handle() const { return handle_; }
 
  private:
   int handle_ = -1;  // Fortran handle of the MPI communicator (MPI_Comm_c2f); -1: one rank

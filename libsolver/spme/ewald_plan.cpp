@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "real_space_sum.h"
 
@@ -36,17 +37,54 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& poi
       smooth_(std::move(grid), points),
       shares_(std::move(shares)) {}
 
+namespace {
+
+PointField rows_of(const PointField& points, SourceRows rows) { return points.middleRows(rows.begin, rows.end - rows.begin); }
+
+SpmePlan smooth_plan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
+                     SourceRows rows) {
+  if (!grid->distributed()) return SpmePlan(std::move(grid), rows_of(sources, rows), targets);
+  if (&sources == &targets) return SpmePlan(std::move(grid), sources);
+  return SpmePlan(std::move(grid), sources, targets);
+}
+
+}  // namespace
+
+EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
+                     SourceRows rows, PairShares shares)
+    : rows_(rows.begin == 0 && rows.end == sources.rows() ? std::nullopt : std::optional<SourceRows>(rows)),
+      smooth_of_rows_(rows_ && !grid->distributed()),
+      smooth_(smooth_plan(grid, sources, targets, rows)),
+      shares_(std::move(shares)) {
+  if (rows.begin < 0 || rows.end < rows.begin || rows.end > sources.rows())
+    throw std::invalid_argument("EwaldPlan: source rows [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") of " + std::to_string(sources.rows()));
+  if (has_real_space_sources())
+    neighbors_.emplace(grid->box(), grid->parameters().cutoff, rows_of(sources, rows), targets);
+}
+
+const PointField& EwaldPlan::real_space_rows(const PointField& density, PointField& copy) const {
+  return rows_ ? (copy = rows_of(density, *rows_)) : density;
+}
+
+const PointField& EwaldPlan::smooth_rows(const PointField& density, PointField& copy) const {
+  return smooth_of_rows_ ? (copy = rows_of(density, *rows_)) : density;
+}
+
 PointField EwaldPlan::single_layer(const PointField& forces) {
-  PointField u = smooth_.single_layer(forces);
+  PointField copy;
+  PointField u = smooth_.single_layer(smooth_rows(forces, copy));
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_single_layer(neighbors(), xi(), forces, kept(single_coefficients_), &shares_);
+  if (has_real_space_sources())
+    u += real_space_single_layer(neighbors(), xi(), real_space_rows(forces, copy), kept(single_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
 }
 
 PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
-  PointField u = smooth_.single_layer(forces);
+  PointField copy;
+  PointField u = smooth_.single_layer(smooth_rows(forces, copy));
   timings_.real_space = 0.0;
   timings_.smooth = smooth_.timings();
   return u;
@@ -61,9 +99,12 @@ PointField EwaldPlan::smooth_single_layer(const SpmeStencils::SpreadingMatrix& s
 
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   double_products_ = true;
-  PointField u = smooth_.double_layer(q, normals);
+  PointField q_copy, n_copy;
+  PointField u = smooth_.double_layer(smooth_rows(q, q_copy), smooth_rows(normals, n_copy));
   const auto start = std::chrono::steady_clock::now();
-  u += real_space_double_layer(neighbors(), xi(), q, normals, kept(double_coefficients_), &shares_);
+  if (has_real_space_sources())
+    u += real_space_double_layer(neighbors(), xi(), real_space_rows(q, q_copy), real_space_rows(normals, n_copy),
+                                 kept(double_coefficients_), &shares_);
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;

@@ -53,6 +53,11 @@ struct EwaldTimings {
   }
 };
 
+// The rows [begin, end) of a plan's sources whose real-space pairs one rank sums.
+struct SourceRows {
+  Eigen::Index begin = 0, end = 0;
+};
+
 class EwaldPlan {
  public:
   // `shares`: real-space pairs weighted 1 - share in both layers (real_space_sum.h).
@@ -60,6 +65,13 @@ class EwaldPlan {
             const PointField& targets, PairShares shares = {});
   // Targets are the sources.
   EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points, PairShares shares = {});
+  // One rank's part of the sums of the ranks that share a run: the real-space pairs of the
+  // sources `rows` (numbered within them in `shares`), and the smooth part of every source in
+  // this rank's slab of a distributed grid, else of the sources `rows` too. Products take every
+  // source's density; the ranks' results sum to the whole. `sources` may be `targets` (the
+  // stencils are then shared).
+  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
+            SourceRows rows, PairShares shares = {});
 
   PointField single_layer(const PointField& forces);
   PointField double_layer(const PointField& q, const PointField& normals);
@@ -90,6 +102,14 @@ class EwaldPlan {
  private:
   std::vector<double>* kept(std::vector<double>& coefficients) const;
 
+  // The densities of the sources of the real-space sum and of the smooth part (in `copy` when
+  // they are some rows of `density`).
+  const PointField& real_space_rows(const PointField& density, PointField& copy) const;
+  const PointField& smooth_rows(const PointField& density, PointField& copy) const;
+  bool has_real_space_sources() const { return !rows_ || rows_->end > rows_->begin; }
+
+  std::optional<SourceRows> rows_;         // the real-space sources of one rank, if not all
+  bool smooth_of_rows_ = false;            // the smooth part's sources are rows_ too
   std::optional<NeighborList> neighbors_;  // empty after release_real_space()
   SpmePlan smooth_;
   PairShares shares_;

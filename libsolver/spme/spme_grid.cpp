@@ -36,10 +36,14 @@ fftw_plan plan_many(const std::array<int, 3>& n, int components, bool forward, u
 
 }  // namespace
 
-SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning)
+SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning,
+                   const Communicator& ranks)
     : box_(box), parameters_(parameters) {
   validate(parameters, box);
   const std::array<int, 3>& K = parameters.grid;
+  flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  threads_ = omp_get_max_threads();
+  if (ranks.size() > 1 && SlabFft::available()) slab_ = std::make_unique<SlabFft>(ranks, K, flags_, threads_);
 
   // Wavenumbers and B-spline moduli per direction; the Nyquist index gets k = 0 and is dropped.
   std::vector<double> modulus[3];
@@ -52,27 +56,30 @@ SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, Ff
     }
     modulus[d] = bspline_modulus(parameters.order, K[d]);
   }
-  influence_.assign(complex_points(), 0.0);
+  influence_.assign(spectrum_size(1), 0.0);
   const double inv_volume = 1.0 / box.volume();
-  const int n3 = K[2] / 2 + 1;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < K[0]; ++i) {
-    for (int j = 0; j < K[1]; ++j) {
-      for (int l = 0; l < n3; ++l) {
-        if (i == K[0] / 2 || j == K[1] / 2 || l == K[2] / 2) continue;  // Nyquist planes
-        const double k2 = wavenumber_[0][i] * wavenumber_[0][i] +
-                          wavenumber_[1][j] * wavenumber_[1][j] +
-                          wavenumber_[2][l] * wavenumber_[2][l];
-        if (k2 == 0.0) continue;  // the k = 0 mode is removed
-        influence_[(static_cast<std::size_t>(i) * K[1] + j) * n3 + l] =
-            ewald_fourier_scale(k2, parameters.xi) * inv_volume /
-            (modulus[0][i] * modulus[1][j] * modulus[2][l]);
-      }
-    }
-  }
+  for_each_wavevector([&](std::size_t m, int i, int j, int l) {
+    if (i == K[0] / 2 || j == K[1] / 2 || l == K[2] / 2) return;  // Nyquist planes
+    const double k2 = wavenumber_[0][i] * wavenumber_[0][i] + wavenumber_[1][j] * wavenumber_[1][j] +
+                      wavenumber_[2][l] * wavenumber_[2][l];
+    if (k2 == 0.0) return;  // the k = 0 mode is removed
+    influence_[m] = ewald_fourier_scale(k2, parameters.xi) * inv_volume / (modulus[0][i] * modulus[1][j] * modulus[2][l]);
+  });
+}
 
-  flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  threads_ = omp_get_max_threads();
+template <class F>
+void SpmeGrid::for_each_wavevector(F&& f) const {
+  // Serial layout (i, j, l); a slab's spectrum is transposed: (j - first_row, i, l).
+  const bool transposed = slab_ != nullptr;
+  const int n_outer = transposed ? slab_->rows() : size(0), n_middle = transposed ? size(0) : size(1);
+  const int first_row = transposed ? slab_->first_row() : 0, n3 = size(2) / 2 + 1;
+#pragma omp parallel for schedule(static)
+  for (int o = 0; o < n_outer; ++o)
+    for (int mid = 0; mid < n_middle; ++mid) {
+      const int i = transposed ? mid : o, j = transposed ? first_row + o : mid;
+      const std::size_t row = (static_cast<std::size_t>(o) * n_middle + mid) * n3;
+      for (int l = 0; l < n3; ++l) f(row + l, i, j, l);
+    }
 }
 
 SpmeGrid::~SpmeGrid() {
@@ -102,70 +109,68 @@ std::size_t SpmeGrid::complex_points() const {
   return static_cast<std::size_t>(size(0)) * size(1) * (size(2) / 2 + 1);
 }
 
+std::size_t SpmeGrid::real_size(int components) const {
+  return slab_ ? slab_->real_size(components) : components * real_points();
+}
+
+std::size_t SpmeGrid::spectrum_size(int components) const {
+  if (slab_) return components == 1 ? static_cast<std::size_t>(slab_->rows()) * size(0) * (size(2) / 2 + 1)
+                                    : slab_->spectrum_size(components);
+  return components * complex_points();
+}
+
 void SpmeGrid::forward(int components, double* real, fftw_complex* spectrum) const {
+  if (slab_) return slab_->forward(components, real, spectrum);
   fftw_execute_dft_r2c(components == 3 ? plan(forward3_, 3, true) : plan(forward6_, 6, true), real, spectrum);
 }
 
 void SpmeGrid::backward(fftw_complex* spectrum, double* real) const {
+  if (slab_) return slab_->backward(spectrum, real);
   fftw_execute_dft_c2r(plan(backward3_, 3, false), spectrum, real);
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
   Complex* f = reinterpret_cast<Complex*>(spectrum);
-  const int K1 = size(1), n3 = size(2) / 2 + 1;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < size(0); ++i) {
-    for (int j = 0; j < K1; ++j) {
-      for (int l = 0; l < n3; ++l) {
-        const std::size_t m = (static_cast<std::size_t>(i) * K1 + j) * n3 + l;
-        Complex* fm = f + 3 * m;
-        const double s = influence_[m];
-        if (s == 0.0) {
-          fm[0] = fm[1] = fm[2] = 0.0;
-          continue;
-        }
-        // S^F(k) f = s (f - k (k.f)/k^2)
-        const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
-        const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
-        const Complex kf = (k0 * fm[0] + k1 * fm[1] + k2 * fm[2]) * inv_k2;
-        fm[0] = s * (fm[0] - k0 * kf);
-        fm[1] = s * (fm[1] - k1 * kf);
-        fm[2] = s * (fm[2] - k2 * kf);
-      }
+  for_each_wavevector([&](std::size_t m, int i, int j, int l) {
+    Complex* fm = f + 3 * m;
+    const double s = influence_[m];
+    if (s == 0.0) {
+      fm[0] = fm[1] = fm[2] = 0.0;
+      return;
     }
-  }
+    // S^F(k) f = s (f - k (k.f)/k^2)
+    const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+    const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
+    const Complex kf = (k0 * fm[0] + k1 * fm[1] + k2 * fm[2]) * inv_k2;
+    fm[0] = s * (fm[0] - k0 * kf);
+    fm[1] = s * (fm[1] - k1 * kf);
+    fm[2] = s * (fm[2] - k2 * kf);
+  });
 }
 
 void SpmeGrid::apply_stresslet(const fftw_complex* density, fftw_complex* velocity) const {
   const Complex* D = reinterpret_cast<const Complex*>(density);
   Complex* u = reinterpret_cast<Complex*>(velocity);
-  const int K1 = size(1), n3 = size(2) / 2 + 1;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < size(0); ++i) {
-    for (int j = 0; j < K1; ++j) {
-      for (int l = 0; l < n3; ++l) {
-        const std::size_t m = (static_cast<std::size_t>(i) * K1 + j) * n3 + l;
-        const Complex* d = D + 6 * m;
-        Complex* um = u + 3 * m;
-        const double s = influence_[m];
-        if (s == 0.0) {
-          um[0] = um[1] = um[2] = 0.0;
-          continue;
-        }
-        // T^F(-k) : D = -i s [2 D k + k tr D - 2 k (k.D.k)/k^2] (ewald_fourier_stresslet_apply).
-        const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
-        const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
-        const Complex dk0 = d[0] * k0 + d[3] * k1 + d[4] * k2;
-        const Complex dk1 = d[3] * k0 + d[1] * k1 + d[5] * k2;
-        const Complex dk2 = d[4] * k0 + d[5] * k1 + d[2] * k2;
-        const Complex scalar = d[0] + d[1] + d[2] - 2.0 * (k0 * dk0 + k1 * dk1 + k2 * dk2) * inv_k2;
-        const auto times_minus_is = [s](Complex z) { return Complex(s * z.imag(), -s * z.real()); };
-        um[0] = times_minus_is(2.0 * dk0 + k0 * scalar);
-        um[1] = times_minus_is(2.0 * dk1 + k1 * scalar);
-        um[2] = times_minus_is(2.0 * dk2 + k2 * scalar);
-      }
+  for_each_wavevector([&](std::size_t m, int i, int j, int l) {
+    const Complex* d = D + 6 * m;
+    Complex* um = u + 3 * m;
+    const double s = influence_[m];
+    if (s == 0.0) {
+      um[0] = um[1] = um[2] = 0.0;
+      return;
     }
-  }
+    // T^F(-k) : D = -i s [2 D k + k tr D - 2 k (k.D.k)/k^2] (ewald_fourier_stresslet_apply).
+    const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+    const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
+    const Complex dk0 = d[0] * k0 + d[3] * k1 + d[4] * k2;
+    const Complex dk1 = d[3] * k0 + d[1] * k1 + d[5] * k2;
+    const Complex dk2 = d[4] * k0 + d[5] * k1 + d[2] * k2;
+    const Complex scalar = d[0] + d[1] + d[2] - 2.0 * (k0 * dk0 + k1 * dk1 + k2 * dk2) * inv_k2;
+    const auto times_minus_is = [s](Complex z) { return Complex(s * z.imag(), -s * z.real()); };
+    um[0] = times_minus_is(2.0 * dk0 + k0 * scalar);
+    um[1] = times_minus_is(2.0 * dk1 + k1 * scalar);
+    um[2] = times_minus_is(2.0 * dk2 + k2 * scalar);
+  });
 }
 
 std::size_t SpmeGrid::memory_bytes() const {

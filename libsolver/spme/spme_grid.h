@@ -12,14 +12,25 @@
 // Immutable after construction: one grid may serve several SpmePlans and threads. The FFTs
 // run with the OpenMP thread count current at construction. Each FFTW plan is made on its
 // first use (a Stokeslet grid never plans the 6-component transform), thread-safely.
+//
+// Split over ranks (a grid made with a Communicator of several ranks, in a build with FFTW's
+// MPI library: distributed()), each rank holds only its slab of the grid, planes
+// [first_plane(), first_plane() + planes()) of the first direction, with the rows of the real
+// arrays padded to row_stride() points, and its block of the spectrum, transposed
+// (parallel/slab_fft.h). Spreading into the slab and interpolating from it then give each
+// rank its part of a product; the parts sum to the whole (operators/cell_layers.h). Its
+// transforms are collective: every rank makes the same products in the same order.
 #include <fftw3.h>
 
 #include <cstddef>
+#include <memory>
 #include <mutex>
 #include <vector>
 
 #include "ewald_parameters.h"
 #include "libsolver/common/periodic_box.h"
+#include "libsolver/parallel/communicator.h"
+#include "libsolver/parallel/slab_fft.h"
 
 namespace rbcflow {
 
@@ -31,8 +42,10 @@ enum class FftPlanning { estimate, measure };
 class SpmeGrid {
  public:
   // Throws std::invalid_argument for invalid parameters (validate()).
+  // ranks: split the grid over them when they are several and the build has FFTW's MPI
+  // library (collective), else every rank holds the whole grid.
   SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters,
-           FftPlanning planning = FftPlanning::estimate);
+           FftPlanning planning = FftPlanning::estimate, const Communicator& ranks = {});
   ~SpmeGrid();
   SpmeGrid(const SpmeGrid&) = delete;
   SpmeGrid& operator=(const SpmeGrid&) = delete;
@@ -46,7 +59,17 @@ class SpmeGrid {
   std::size_t complex_points() const;  // K1 K2 (K3/2 + 1)
   std::size_t memory_bytes() const;    // influence function and wavenumbers (FFTW's plans not counted)
 
-  // Forward transform of `components` (3 or 6) interleaved real grids (arrays from fftw_malloc).
+  // This rank's part of the grid: all of it unless distributed().
+  bool distributed() const { return slab_ != nullptr; }
+  int first_plane() const { return slab_ ? slab_->first_plane() : 0; }
+  int planes() const { return slab_ ? slab_->planes() : size(0); }
+  int row_stride() const { return slab_ ? slab_->row_stride() : size(2); }  // points from row to row
+  // What this rank's real arrays and spectra of `components` interleaved grids hold.
+  std::size_t real_size(int components) const;      // doubles
+  std::size_t spectrum_size(int components) const;  // complex numbers
+
+  // Forward transform of `components` (3 or 6) interleaved real grids (arrays from fftw_malloc);
+  // `real` may be destroyed.
   void forward(int components, double* real, fftw_complex* spectrum) const;
   // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
   void backward(fftw_complex* spectrum, double* real) const;
@@ -61,17 +84,22 @@ class SpmeGrid {
  private:
   PeriodicBox box_;
   EwaldParameters parameters_;
-  std::vector<double> influence_;      // 8 pi H(k)/(k^2 V |B|^2) per complex grid point
+  std::vector<double> influence_;      // 8 pi H(k)/(k^2 V |B|^2) per point of this rank's spectrum
   std::vector<double> wavenumber_[3];  // k_d of index m_d (signed; 0 on the Nyquist plane)
   struct LazyPlan {
     std::once_flag made;
     fftw_plan plan = nullptr;
   };
   fftw_plan plan(LazyPlan& p, int components, bool forward) const;
+  // Calls f(m, i, j, l) for every wavevector (i, j, l) of this rank's spectrum, m its index
+  // there (spectra interleave their components: component c of m at C m + c); parallel.
+  template <class F>
+  void for_each_wavevector(F&& f) const;
 
   unsigned flags_;
   int threads_;
   mutable LazyPlan forward3_, forward6_, backward3_;
+  std::unique_ptr<SlabFft> slab_;  // distributed(): this rank's slab's transforms
 };
 
 }  // namespace rbcflow

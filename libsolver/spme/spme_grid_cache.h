@@ -20,9 +20,11 @@ inline constexpr std::size_t kMeasuredGridPoints = std::size_t{1} << 18;
 class SpmeGridCache {
  public:
   // The grid of choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets,
-  // real_space). Thread-safe.
+  // real_space), split over `ranks` where it can be (spme_grid.h). Thread-safe; with several
+  // ranks, collective: every rank asks for the same grids in the same order.
   std::shared_ptr<const SpmeGrid> grid(EwaldKernel kernel, double tolerance, const PeriodicBox& box, long n_sources,
-                                       long n_targets = -1, const RealSpaceUse& real_space = {});
+                                       long n_targets = -1, const RealSpaceUse& real_space = {},
+                                       const Communicator& ranks = {});
   std::size_t memory_bytes() const;  // of the grids it holds
 
  private:
@@ -32,6 +34,7 @@ class SpmeGridCache {
     Eigen::Vector3d lengths;
     long n_sources, n_targets;
     RealSpaceUse real_space;
+    int ranks;
     std::shared_ptr<const SpmeGrid> grid;
   };
   mutable std::mutex mutex_;
@@ -41,6 +44,6 @@ class SpmeGridCache {
 // From `cache`, or built afresh (FFTW_ESTIMATE) when it is null.
 std::shared_ptr<const SpmeGrid> ewald_grid(SpmeGridCache* cache, EwaldKernel kernel, double tolerance,
                                            const PeriodicBox& box, long n_sources, long n_targets = -1,
-                                           const RealSpaceUse& real_space = {});
+                                           const RealSpaceUse& real_space = {}, const Communicator& ranks = {});
 
 }  // namespace rbcflow

@@ -40,7 +40,7 @@ PointField SpmePlan::single_layer(const PointField& forces) {
   check_rows(forces, n_sources(), "the force field");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<double> real(3 * grid_->real_points());
+  FftwBuffer<double> real(grid_->real_size(3));
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
@@ -49,13 +49,14 @@ PointField SpmePlan::single_layer(const PointField& forces) {
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
+  if (grid_->distributed()) throw std::logic_error("SPME: a spreading matrix on a grid split over ranks");
   if (spreading.rows() != static_cast<Eigen::Index>(grid_->real_points()) || spreading.cols() != x.rows())
     throw std::invalid_argument("SPME: a spreading matrix of " + std::to_string(spreading.rows()) + " x " +
                                 std::to_string(spreading.cols()) + " for " + std::to_string(x.rows()) +
                                 " unknowns on a grid of " + std::to_string(grid_->real_points()) + " points");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(x.rows()));
-  FftwBuffer<double> real(3 * grid_->real_points());
+  FftwBuffer<double> real(grid_->real_size(3));
   for (Eigen::Index n = 0; n < x.rows(); ++n)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(n) + c] = x(n, c);
   const double* in = density.data();
@@ -78,7 +79,7 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
 
 PointField SpmePlan::convolve_stokeslet(FftwBuffer<double>& real, std::chrono::steady_clock::time_point t) {
   timings_.spreading = seconds_since(t);
-  FftwBuffer<fftw_complex> velocity(3 * grid_->complex_points());
+  FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
   grid_->forward(3, real.data(), velocity.data());
   timings_.fft = seconds_since(t);
   grid_->apply_stokeslet(velocity.data());
@@ -91,7 +92,7 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(6 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<double> real(6 * grid_->real_points());
+  FftwBuffer<double> real(grid_->real_size(6));
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s) {
     // Symmetric part of q n^T (T is symmetric): xx, yy, zz, xy, xz, yz.
@@ -108,9 +109,9 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   sources_->spread<6>(density.data(), real.data());
   std::vector<double>().swap(density);
   timings_.spreading = seconds_since(t);
-  FftwBuffer<fftw_complex> velocity(3 * grid_->complex_points());
+  FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
   {
-    FftwBuffer<fftw_complex> spectrum(6 * grid_->complex_points());
+    FftwBuffer<fftw_complex> spectrum(grid_->spectrum_size(6));
     grid_->forward(6, real.data(), spectrum.data());
     timings_.fft = seconds_since(t);
     grid_->apply_stresslet(spectrum.data(), velocity.data());
@@ -134,8 +135,9 @@ std::size_t SpmePlan::stencil_bytes() const {
 }
 
 std::size_t SpmePlan::work_bytes(int components) const {
-  const std::size_t real = components * grid_->real_points() * sizeof(double);
-  const std::size_t spectra = (components == 6 ? 9 : 3) * grid_->complex_points() * sizeof(fftw_complex);
+  const std::size_t real = grid_->real_size(components) * sizeof(double);
+  const std::size_t spectra =
+      (grid_->spectrum_size(components) + (components == 6 ? grid_->spectrum_size(3) : 0)) * sizeof(fftw_complex);
   return components * static_cast<std::size_t>(n_sources()) * sizeof(double) + real + spectra;
 }
 

@@ -34,8 +34,8 @@ class SpmePlan {
   SpmePlan(std::shared_ptr<const SpmeGrid> grid, const PointField& points);
 
   const SpmeGrid& grid() const { return *grid_; }
-  int n_sources() const { return sources_->size(); }
-  int n_targets() const { return targets_->size(); }
+  int n_sources() const { return sources_->points(); }
+  int n_targets() const { return targets_->points(); }
 
   // forces: one row per source; returns one row per target. Throws on a size mismatch.
   PointField single_layer(const PointField& forces);

@@ -14,8 +14,13 @@
 namespace rbcflow {
 
 SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
-    : K_{grid.size(0), grid.size(1), grid.size(2)}, p_(grid.order()) {
-  const int n = static_cast<int>(points.rows());
+    : K_{grid.size(0), grid.size(1), grid.size(2)},
+      p_(grid.order()),
+      first_plane_(grid.first_plane()),
+      planes_(grid.planes()),
+      row_stride_(grid.row_stride()),
+      points_(static_cast<int>(points.rows())) {
+  const int n = points_;
   const PeriodicBox& box = grid.box();
   std::vector<int> first(3 * static_cast<std::size_t>(n));
   std::vector<double> weights(3 * static_cast<std::size_t>(p_) * n);
@@ -33,17 +38,24 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
     }
   }
 
-  // Sort by first grid index (slab-major), so that each slab is a contiguous range.
-  order_.resize(n);
-  std::iota(order_.begin(), order_.end(), 0);
+  // The points that touch this rank's planes (all of them on an undivided grid), sorted by
+  // first grid index (slab-major), so that each slab is a contiguous range.
+  const auto touches_planes = [&](int i) {
+    for (int a = 0; a < p_; ++a)
+      if (plane_row((first[3 * static_cast<std::size_t>(i)] + a) % K_[0], 0) >= 0) return true;
+    return false;
+  };
+  for (int i = 0; i < n; ++i)
+    if (touches_planes(i)) order_.push_back(i);
+  const int kept = size();
   const auto key = [&](int i) {
     const int* f = &first[3 * static_cast<std::size_t>(i)];
     return (static_cast<std::int64_t>(f[0]) * K_[1] + f[1]) * K_[2] + f[2];
   };
   std::sort(order_.begin(), order_.end(), [&](int a, int b) { return key(a) < key(b); });
-  first_.resize(first.size());
-  weights_.resize(weights.size());
-  for (int i = 0; i < n; ++i) {
+  first_.resize(3 * static_cast<std::size_t>(kept));
+  weights_.resize(3 * static_cast<std::size_t>(p_) * kept);
+  for (int i = 0; i < kept; ++i) {
     const std::size_t from = static_cast<std::size_t>(order_[i]);
     std::copy_n(&first[3 * from], 3, &first_[3 * static_cast<std::size_t>(i)]);
     std::copy_n(&weights[3 * p_ * from], 3 * p_, &weights_[3 * static_cast<std::size_t>(p_) * i]);
@@ -87,10 +99,11 @@ void SpmeStencils::spread_point(int i, const double* density, double* grid) cons
   const int run = first_run(f[2], p_, K_[2]);
   for (int a = 0; a < p_; ++a) {
     const int i0 = f[0] + a < K_[0] ? f[0] + a : f[0] + a - K_[0];
+    if (plane_row(i0, 0) < 0) continue;
     for (int b = 0; b < p_; ++b) {
       const int i1 = f[1] + b < K_[1] ? f[1] + b : f[1] + b - K_[1];
       const double wab = w[a] * w[p_ + b];
-      double* row = grid + C * ((static_cast<std::size_t>(i0) * K_[1] + i1) * K_[2]);
+      double* row = grid + C * plane_row(i0, i1);
       add_scaled(row + C * f[2], wab, w_rho, C * run);
       add_scaled(row, wab, w_rho + C * run, C * (p_ - run));
     }
@@ -99,7 +112,7 @@ void SpmeStencils::spread_point(int i, const double* density, double* grid) cons
 
 template <int C>
 void SpmeStencils::spread(const double* density, double* grid) const {
-  const std::size_t total = C * static_cast<std::size_t>(K_[0]) * K_[1] * K_[2];
+  const std::size_t total = C * static_cast<std::size_t>(planes_) * K_[1] * row_stride_;
 #pragma omp parallel for schedule(static)
   for (std::size_t g = 0; g < total; ++g) grid[g] = 0.0;
   const int n_slabs = static_cast<int>(slab_begin_.size()) - 1;
@@ -115,7 +128,8 @@ void SpmeStencils::spread(const double* density, double* grid) const {
 }
 
 void SpmeStencils::interpolate(const double* grid, PointField& out) const {
-  out.resize(size(), 3);
+  out.resize(points_, 3);
+  if (size() < points_) out.setZero();  // points that do not touch this rank's planes
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < size(); ++i) {
     const int* f = &first_[3 * static_cast<std::size_t>(i)];
@@ -126,10 +140,11 @@ void SpmeStencils::interpolate(const double* grid, PointField& out) const {
     double sums[3 * kMaxSplineOrder] = {};
     for (int a = 0; a < p_; ++a) {
       const int i0 = f[0] + a < K_[0] ? f[0] + a : f[0] + a - K_[0];
+      if (plane_row(i0, 0) < 0) continue;
       for (int b = 0; b < p_; ++b) {
         const int i1 = f[1] + b < K_[1] ? f[1] + b : f[1] + b - K_[1];
         const double wab = w[a] * w[p_ + b];
-        const double* row = grid + 3 * ((static_cast<std::size_t>(i0) * K_[1] + i1) * K_[2]);
+        const double* row = grid + 3 * plane_row(i0, i1);
         add_scaled(sums, wab, row + 3 * f[2], 3 * run);
         add_scaled(sums + 3 * run, wab, row, 3 * (p_ - run));
       }
@@ -143,6 +158,7 @@ void SpmeStencils::interpolate(const double* grid, PointField& out) const {
 }
 
 SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const {
+  if (planes_ != K_[0]) throw std::logic_error("SPME spreading matrix: not on a grid split over ranks");
   if (map.rows() != size())
     throw std::invalid_argument("SPME spreading matrix: the map has " + std::to_string(map.rows()) + " rows for " +
                                 std::to_string(size()) + " points");

@@ -9,6 +9,11 @@
 // Spreading is parallel without races by colouring: the points are sorted into slabs along the
 // first grid direction, each at least p - 1 grid planes wide, an even number of them around
 // the periodic grid; slabs of one parity never write to the same grid plane.
+//
+// On a grid split over ranks (SpmeGrid::distributed()) the stencils are those of the points
+// that touch this rank's planes, and spreading and interpolation use only those planes: the
+// grid arrays are the rank's slab, interpolation gives its part of each point's value (zero
+// for a point that does not touch the slab).
 #include <Eigen/SparseCore>
 #include <array>
 #include <cstddef>
@@ -23,7 +28,8 @@ class SpmeStencils {
  public:
   SpmeStencils(const SpmeGrid& grid, const PointField& points);
 
-  int size() const { return static_cast<int>(order_.size()); }
+  int size() const { return static_cast<int>(order_.size()); }  // points with a stencil here
+  int points() const { return points_; }                        // the caller's points
   std::size_t memory_bytes() const;
 
   // grid[C * g + c] = sum_points W_point(g) density[C * point + c]: `density` holds C
@@ -31,7 +37,7 @@ class SpmeStencils {
   template <int C>
   void spread(const double* density, double* grid) const;
 
-  // out(point, c) = sum_g W_point(g) grid[3 * g + c].
+  // out(point, c) = sum_g W_point(g) grid[3 * g + c], one row per point of the caller.
   void interpolate(const double* grid, PointField& out) const;
 
   // The spreading of densities that are a fixed linear map of other unknowns (point i's density
@@ -39,7 +45,8 @@ class SpmeStencils {
   // spread(map x) = S x. For points that never move and whose densities come from fewer
   // unknowns (the wall's Gauss points from its nodal densities, 7 per triangle), S holds the
   // stencils merged per unknown and its product reads less than spreading point by point.
-  // Throws std::invalid_argument when map has not one row per point.
+  // Throws std::invalid_argument when map has not one row per point, std::logic_error on a
+  // distributed grid.
   using SpreadingMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   SpreadingMatrix spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const;
 
@@ -47,8 +54,18 @@ class SpmeStencils {
   template <int C>
   void spread_point(int i, const double* density, double* grid) const;
 
+  // Row of grid plane i0 (global index), row j of it, in the grid array: -1 when the plane
+  // is not this rank's.
+  std::ptrdiff_t plane_row(int i0, int j) const {
+    const int local = i0 - first_plane_;
+    if (local < 0 || local >= planes_) return -1;
+    return (static_cast<std::ptrdiff_t>(local) * K_[1] + j) * row_stride_;
+  }
+
   std::array<int, 3> K_;
   int p_;
+  int first_plane_ = 0, planes_ = 0, row_stride_ = 0;  // this rank's part of the grid
+  int points_ = 0;
   std::vector<int> order_;       // stencils are stored sorted: entry i is point order_[i]
   std::vector<int> first_;       // 3 per point: first grid index (mod K_d) of the stencil
   std::vector<double> weights_;  // 3 p per point: ascending grid index in each direction

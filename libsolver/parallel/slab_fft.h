@@ -1,0 +1,60 @@
+#pragma once
+// The 3-D real transforms of an Ewald grid split in slabs over the ranks of a run, by FFTW's MPI
+// interface (FFTW manual, chapter 6 "Distributed-memory FFTW with MPI"). Rank r holds
+//   - of the real grid, the planes [first_plane, first_plane + planes) of the first direction;
+//   - of the spectrum, the rows [first_row, first_row + rows) of the second direction, transposed
+//     (FFTW_MPI_TRANSPOSED_OUT: the forward transform leaves out its last global transpose and the
+//     backward transform starts from the transposed spectrum).
+// With K = (K1, K2, K3), n3 = K3/2 + 1, R = 2 n3 (FFTW's padding of the real rows) and C
+// interleaved components:
+//   real:     value c of (i, j, l) at (((i - first_plane) K2 + j) R + l) C + c
+//   spectrum: value c of (i, j, l) at (((j - first_row) K1 + i) n3 + l) C + c
+// Every call is collective: all ranks make it, in the same order, from the thread that
+// initialised MPI (outside OpenMP parallel regions).
+#include <fftw3.h>
+
+#include <array>
+#include <cstddef>
+#include <memory>
+
+#include "libsolver/parallel/communicator.h"
+
+namespace rbcflow {
+
+class SlabFft {
+ public:
+  // Whether this build has FFTW's MPI library (without it a grid is transformed whole on every
+  // rank: spme/spme_grid.h).
+  static bool available();
+
+  // flags: FFTW_ESTIMATE or FFTW_MEASURE; threads: the OpenMP threads of each rank's transforms.
+  // Throws std::logic_error when !available().
+  SlabFft(const Communicator& ranks, const std::array<int, 3>& size, unsigned flags, int threads);
+  ~SlabFft();
+  SlabFft(const SlabFft&) = delete;
+  SlabFft& operator=(const SlabFft&) = delete;
+
+  int first_plane() const { return first_plane_; }
+  int planes() const { return planes_; }
+  int first_row() const { return first_row_; }
+  int rows() const { return rows_; }
+  int row_stride() const { return 2 * (size_[2] / 2 + 1); }  // R
+  // What a real array and a spectrum of `components` (3 or 6) must hold on this rank (FFTW's
+  // transposes may need more than the local block).
+  std::size_t real_size(int components) const;      // doubles
+  std::size_t spectrum_size(int components) const;  // complex numbers
+
+  // Forward transform of `components` (3 or 6) interleaved real slabs; `real` may be destroyed.
+  void forward(int components, double* real, fftw_complex* spectrum) const;
+  // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
+  void backward(fftw_complex* spectrum, double* real) const;
+
+ private:
+  struct Plans;
+  std::array<int, 3> size_;
+  int first_plane_ = 0, planes_ = 0, first_row_ = 0, rows_ = 0;
+  std::size_t alloc3_ = 0, alloc6_ = 0;  // complex numbers FFTW asks for, 3 and 6 components
+  std::unique_ptr<Plans> plans_;
+};
+
+}  // namespace rbcflow
