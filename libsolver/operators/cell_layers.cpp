@@ -188,6 +188,7 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
     if (!double_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);
     const PointField q = u.array().colwise() * nodes_.weight.array();
     Eigen::MatrixXd regular = double_plan_->double_layer(q, nodes_.normal);
+    timings_.double_layer_ewald += double_plan_->timings();
     const PointField owned_q = owned_rows(q), owned_normals = owned_rows(nodes_.normal);
     regular.rowwise() +=
         double_layer_linear_part(*domain_.box, owned_rows(nodes_.x), owned_q, owned_normals, nodes_per_cell());

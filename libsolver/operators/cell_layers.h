@@ -37,6 +37,7 @@ struct CellLayersTimings {
   double self = 0.0;      // singular corrections
   double near = 0.0;      // near-target search and nearly-singular corrections
   double applied = 0.0;   // the corrections applied in products so far (part of each product)
+  EwaldTimings double_layer_ewald;  // the double layer's Ewald sums in products so far (this rank's)
 };
 
 // The cost model of the cells' double-layer Ewald sum (ewald_parameters.h). Its plan serves

@@ -51,6 +51,14 @@ struct EwaldTimings {
   double total() const {
     return real_space + smooth.spreading + smooth.fft + smooth.influence + smooth.interpolation;
   }
+  EwaldTimings& operator+=(const EwaldTimings& o) {
+    real_space += o.real_space;
+    smooth.spreading += o.smooth.spreading;
+    smooth.fft += o.smooth.fft;
+    smooth.influence += o.smooth.influence;
+    smooth.interpolation += o.smooth.interpolation;
+    return *this;
+  }
 };
 
 // The rows [begin, end) of a plan's sources whose real-space pairs one rank sums.

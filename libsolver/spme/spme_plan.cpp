@@ -49,11 +49,11 @@ PointField SpmePlan::single_layer(const PointField& forces) {
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
-  if (grid_->distributed()) throw std::logic_error("SPME: a spreading matrix on a grid split over ranks");
-  if (spreading.rows() != static_cast<Eigen::Index>(grid_->real_points()) || spreading.cols() != x.rows())
+  const auto slab_points = static_cast<Eigen::Index>(grid_->planes()) * grid_->size(1) * grid_->row_stride();
+  if (spreading.rows() != slab_points || spreading.cols() != x.rows())
     throw std::invalid_argument("SPME: a spreading matrix of " + std::to_string(spreading.rows()) + " x " +
                                 std::to_string(spreading.cols()) + " for " + std::to_string(x.rows()) +
-                                " unknowns on a grid of " + std::to_string(grid_->real_points()) + " points");
+                                " unknowns on a grid of " + std::to_string(slab_points) + " points");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(x.rows()));
   FftwBuffer<double> real(grid_->real_size(3));

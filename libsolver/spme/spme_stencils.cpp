@@ -158,13 +158,14 @@ void SpmeStencils::interpolate(const double* grid, PointField& out) const {
 }
 
 SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const {
-  if (planes_ != K_[0]) throw std::logic_error("SPME spreading matrix: not on a grid split over ranks");
-  if (map.rows() != size())
+  if (map.rows() != points_)
     throw std::invalid_argument("SPME spreading matrix: the map has " + std::to_string(map.rows()) + " rows for " +
-                                std::to_string(size()) + " points");
-  const Eigen::SparseMatrix<double> by_unknown = map;  // column n: the points of unknown n
-  std::vector<int> rank(size());
+                                std::to_string(points_) + " points");
+  // Column n: the points of unknown n that touch this rank's planes (all on a whole grid).
+  Eigen::SparseMatrix<double> by_unknown = map;
+  std::vector<int> rank(points_, -1);
   for (int k = 0; k < size(); ++k) rank[order_[k]] = k;
+  by_unknown.prune([&](Eigen::Index row, Eigen::Index, double) { return rank[row] >= 0; });
   const int m = static_cast<int>(map.cols());
   const auto wrap = [&](int i, int d) { return ((i % K_[d]) + K_[d]) % K_[d]; };
   std::vector<std::vector<std::pair<int, double>>> columns(m);
@@ -211,9 +212,9 @@ SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::Sparse
           for (int c = 0; c < e2; ++c) {
             const double v = box[(static_cast<std::size_t>(a) * e1 + b) * e2 + c];
             if (v == 0.0) continue;
-            const int g = (wrap(base[0] + lo[0] + a, 0) * K_[1] + wrap(base[1] + lo[1] + b, 1)) * K_[2] +
-                          wrap(base[2] + lo[2] + c, 2);
-            column.emplace_back(g, v);
+            const std::ptrdiff_t row = plane_row(wrap(base[0] + lo[0] + a, 0), wrap(base[1] + lo[1] + b, 1));
+            if (row < 0) continue;  // another rank's plane
+            column.emplace_back(static_cast<int>(row + wrap(base[2] + lo[2] + c, 2)), v);
           }
       std::sort(column.begin(), column.end());
       std::size_t kept = 0;
@@ -227,7 +228,7 @@ SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::Sparse
       column.resize(kept);
     }
   }
-  Eigen::SparseMatrix<double> s(static_cast<Eigen::Index>(K_[0]) * K_[1] * K_[2], m);
+  Eigen::SparseMatrix<double> s(static_cast<Eigen::Index>(planes_) * K_[1] * row_stride_, m);
   Eigen::VectorXi sizes(m);
   for (int n = 0; n < m; ++n) sizes[n] = static_cast<int>(columns[n].size());
   s.reserve(sizes);

@@ -45,8 +45,8 @@ class SpmeStencils {
   // spread(map x) = S x. For points that never move and whose densities come from fewer
   // unknowns (the wall's Gauss points from its nodal densities, 7 per triangle), S holds the
   // stencils merged per unknown and its product reads less than spreading point by point.
-  // Throws std::invalid_argument when map has not one row per point, std::logic_error on a
-  // distributed grid.
+  // On a grid split over ranks, S has a row per point of this rank's slab (its real array,
+  // padding included). Throws std::invalid_argument when map has not one row per point.
   using SpreadingMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   SpreadingMatrix spreading_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& map) const;
 

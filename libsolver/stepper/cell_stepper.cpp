@@ -213,6 +213,11 @@ FlowSolution CellStepper::solve() const {
                                                 options_.gmres_max_iterations, guess);
     products_timer.stop();
     timing.cell_corrections = layers->build_timings().applied;
+    const EwaldTimings& ewald = layers->build_timings().double_layer_ewald;
+    timing.cell_ewald_real = ewald.real_space;
+    timing.cell_ewald_spreading = ewald.smooth.spreading;
+    timing.cell_ewald_fft = ewald.smooth.fft + ewald.smooth.influence;
+    timing.cell_ewald_interpolation = ewald.smooth.interpolation;
     if (!v.gmres.converged) {
       throw std::runtime_error("GMRES for the cell velocity did not converge" + at_step(step) + ": relative residual " +
                                std::to_string(v.gmres.relative_residual) + " after " +

@@ -31,7 +31,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   const RealSpaceUse use = real_space == RealSpace::assembled ? kAssembledRealSpace : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
   const long m = chosen_for_targets > 0 ? chosen_for_targets : targets.rows();
-  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, m, use),
+  // The assembled operator's grid is split over the ranks where it can be (spme_grid.h); an
+  // operator at one rank's share of the targets keeps the whole grid (its interpolation must
+  // see every plane).
+  const Communicator grid_ranks = real_space == RealSpace::assembled ? ranks_ : Communicator{};
+  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, m, use, grid_ranks),
                  wrapped(elements_->points, box), wrapped(targets_, box));
   if (real_space == RealSpace::assembled) {
     near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),
@@ -45,13 +49,19 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 PointField WallOperator::apply(const PointField& f) {
   PointField u;
   if (near_and_real_) {
+    const bool distributed = ewald_->smooth().grid().distributed();
     u = ewald_->smooth_single_layer(*node_spreading_, f);
-    if (!near_.coincident.empty()) {
+    if (!near_.coincident.empty() && (!distributed || ranks_.root())) {  // once in the ranks' sum
       const PointField density = elements_->weighted_density(f);
       const double self = ewald_real_stokeslet_self(ewald_->xi());
       for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
     }
     Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
+    if (distributed) {
+      rest += to_vector(u);  // this rank's planes' part of the smooth sum too
+      ranks_.sum(rest);
+      return to_field(rest);
+    }
     ranks_.sum(rest);  // the ranks' rows
     return u + to_field(rest);
   }

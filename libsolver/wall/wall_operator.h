@@ -31,8 +31,9 @@ class WallOperator {
   // `chosen_for_targets` > 0: the parameters are those of that many targets, the whole set of
   // which `targets` is one rank's share (the same grid on every rank and as on one).
   // `ranks` (RealSpace::assembled): each rank assembles the rows of its block of the targets
-  // and a product adds the ranks' rows (disjoint: the same bits as on one rank); the smooth
-  // part is computed on every rank.
+  // and a product adds the ranks' rows; the smooth part is computed on the ranks' slabs of the
+  // grid (spme_grid.h) and added in the same sum, or, in a build without FFTW's MPI library,
+  // on every rank whole (the product then has the same bits as on one rank).
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,

@@ -167,8 +167,9 @@ TEST(DistributedLayers, ARankWithoutCells) {
   EXPECT_LT(relative(distributed.single_layer(f), serial.single_layer(f)), 1e-13);
 }
 
-// The wall solve with the assembled rows shared by the ranks (wall_operator.h): the ranks' rows
-// are disjoint, so every product, and the solve, has the same bits as on one rank.
+// The wall solve with the assembled rows shared by the ranks and the smooth part on their slabs
+// of the grid (wall_operator.h): the same as on one rank to the rounding of the transforms and
+// of the sum (the same bits in a build without FFTW's MPI library: the ranks' rows are disjoint).
 TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
   TubeSpec spec;
   spec.diameter = 3.2;
@@ -182,7 +183,14 @@ TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
   const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
   const WallSolution a = one.solve(v, 1.0), b = shared.solve(v, 1.0);
   EXPECT_EQ(a.gmres.iterations, b.gmres.iterations);
-  EXPECT_EQ((a.force - b.force).cwiseAbs().maxCoeff(), 0.0);
+  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  std::printf("  wall force %.1e from one rank's, %d iterations\n", d, b.gmres.iterations);
+  // Rounding of ~1e-16 per product, carried by GMRES (tolerance 1e-6) through its iterations.
+  if (Communicator::world().size() > 1 && SlabFft::available()) {
+    EXPECT_LT(d, 1e-12);
+  } else {
+    EXPECT_EQ(d, 0.0);
+  }
 }
 
 int main(int argc, char** argv) {
