@@ -1,5 +1,5 @@
 // The cells' layers shared by the ranks (operators/cell_layers.h, parallel/ownership.h): run
-// under mpirun -np 2 (tests/libsolver/parallel/CMakeLists.txt), every product of CellLayers and
+// under mpirun -np 2 and 3 (tests/libsolver/parallel/CMakeLists.txt), every product of CellLayers and
 // CellLayersAtPoints on the world's ranks equals the same product on one rank, computed on each
 // rank alone, to the rounding of a sum taken in another order; and it is the same on every rank.
 // The same for the SPME grid split in slabs over the ranks (spme/spme_grid.h).
