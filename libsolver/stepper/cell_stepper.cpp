@@ -16,6 +16,44 @@ namespace rbcflow {
 
 namespace {
 
+// Every cell's membrane state on every rank, from those of the ranks' own cells (the others
+// empty here): packed, summed over the ranks (a value plus zeros: the same bits), unpacked.
+void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<SHCoeffs>& shapes,
+                     int np, const Communicator& ranks) {
+  if (ranks.size() == 1) return;
+  const int nc = static_cast<int>(membranes.size());
+  std::vector<Eigen::Index> offset(nc + 1, 0);
+  for (int c = 0; c < nc; ++c) {
+    MembraneState& m = membranes[c];
+    if (!owned.contains(c)) {
+      m.traction = SHCoeffs(shapes[c].order(), 3);
+      m.traction_grid = Eigen::MatrixXd::Zero(np, 3);
+      m.dilatation = Eigen::VectorXd::Zero(np);
+      m.principal_tension = Eigen::MatrixXd::Zero(np, 2);
+      m.elastic_energy = 0.0;
+    }
+    offset[c + 1] = offset[c] + m.traction.values().size() + m.traction_grid.size() + m.dilatation.size() +
+                    m.principal_tension.size() + 1;
+  }
+  Eigen::VectorXd packed(offset[nc]);
+  const auto each_array = [&](int c, auto&& f) {
+    MembraneState& m = membranes[c];
+    Eigen::Index at = offset[c];
+    for (Eigen::Map<Eigen::VectorXd> v : {Eigen::Map<Eigen::VectorXd>(m.traction.values().data(), m.traction.values().size()),
+                                           Eigen::Map<Eigen::VectorXd>(m.traction_grid.data(), m.traction_grid.size()),
+                                           Eigen::Map<Eigen::VectorXd>(m.dilatation.data(), m.dilatation.size()),
+                                           Eigen::Map<Eigen::VectorXd>(m.principal_tension.data(), m.principal_tension.size()),
+                                           Eigen::Map<Eigen::VectorXd>(&m.elastic_energy, 1)}) {
+      f(packed.segment(at, v.size()), v);
+      at += v.size();
+    }
+  };
+  for (int c = 0; c < nc; ++c) each_array(c, [](auto&& to, auto&& from) { to = from; });
+  ranks.sum(packed);
+  for (int c = 0; c < nc; ++c) each_array(c, [](auto&& from, auto&& to) { to = from; });
+}
+
+
 constexpr double kPi = std::numbers::pi;
 constexpr int kMaxStartSweeps = 20;
 constexpr double kStartSweepTolerance = 1e-5;
@@ -119,12 +157,13 @@ FlowSolution CellStepper::solve() const {
     s.membrane.resize(nc);
     s.traction.resize(nc * np, 3);
     ScopedTimer membrane_timer(timing.membrane);
+    // Each rank the membranes of its own cells; every rank then holds all (shared_membranes).
+    const OwnedRange owned = owned_block(nc, options_.domain.ranks);
+    for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
 #pragma omp parallel for schedule(dynamic)
-    for (int c = 0; c < nc; ++c) {
-      shapes[c] = cells_[c].shape.coeffs();
-      s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
-      s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
-    }
+    for (int c = owned.begin; c < owned.end; ++c) s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
+    share_membranes(s.membrane, owned, shapes, np, options_.domain.ranks);
+    for (int c = 0; c < nc; ++c) s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
     for (int c = 0; c < nc; ++c) {
       if (cells_[c].body_force.isZero()) continue;
       const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
