@@ -13,6 +13,7 @@
 
 #include "cli.h"
 #include "libsolver/parallel/communicator.h"
+#include "libsolver/parallel/slab_fft.h"
 #include "rbcflow_version.h"
 
 namespace rbcflow::cli {
@@ -51,7 +52,11 @@ int run_info(Args& args) {
   std::printf("  toml11   %d.%d.%d\n", TOML11_VERSION_MAJOR, TOML11_VERSION_MINOR, TOML11_VERSION_PATCH);
   std::printf("  Boost    %d.%d.%d\n", BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000, BOOST_VERSION % 100);
   std::printf("  OpenMP   %d (spec date)\n", _OPENMP);
-  if (built_with_mpi()) std::printf("  MPI      %s\n", mpi_library_version().c_str());
+  if (built_with_mpi()) {
+    std::printf("  MPI      %s\n", mpi_library_version().c_str());
+    std::printf("  FFTW MPI %s\n", SlabFft::available() ? "yes: the Ewald grids are split in slabs over the ranks"
+                                                         : "no (libfftw3-mpi-dev): every rank transforms whole Ewald grids");
+  }
   std::printf("threads:   %d (OpenMP; set OMP_NUM_THREADS to change)\n", omp_get_max_threads());
   const Communicator ranks = Communicator::world();
   std::printf("parallel:  %s%s\n", ranks_and_threads(ranks.size(), omp_get_max_threads()).c_str(),
