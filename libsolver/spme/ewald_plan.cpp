@@ -41,6 +41,14 @@ namespace {
 
 PointField rows_of(const PointField& points, SourceRows rows) { return points.middleRows(rows.begin, rows.end - rows.begin); }
 
+// The rows, or std::invalid_argument when they are not rows of n sources.
+SourceRows checked(SourceRows rows, Eigen::Index n) {
+  if (rows.begin < 0 || rows.end < rows.begin || rows.end > n)
+    throw std::invalid_argument("EwaldPlan: source rows [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") of " + std::to_string(n));
+  return rows;
+}
+
 SpmePlan smooth_plan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
                      SourceRows rows) {
   if (!grid->distributed()) return SpmePlan(std::move(grid), rows_of(sources, rows), targets);
@@ -52,13 +60,11 @@ SpmePlan smooth_plan(std::shared_ptr<const SpmeGrid> grid, const PointField& sou
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
                      SourceRows rows, PairShares shares)
-    : rows_(rows.begin == 0 && rows.end == sources.rows() ? std::nullopt : std::optional<SourceRows>(rows)),
+    : rows_(checked(rows, sources.rows()).begin == 0 && rows.end == sources.rows() ? std::nullopt
+                                                                                     : std::optional<SourceRows>(rows)),
       smooth_of_rows_(rows_ && !grid->distributed()),
       smooth_(smooth_plan(grid, sources, targets, rows)),
       shares_(std::move(shares)) {
-  if (rows.begin < 0 || rows.end < rows.begin || rows.end > sources.rows())
-    throw std::invalid_argument("EwaldPlan: source rows [" + std::to_string(rows.begin) + ", " +
-                                std::to_string(rows.end) + ") of " + std::to_string(sources.rows()));
   if (has_real_space_sources())
     neighbors_.emplace(grid->box(), grid->parameters().cutoff, rows_of(sources, rows), targets);
 }

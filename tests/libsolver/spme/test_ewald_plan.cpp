@@ -222,3 +222,20 @@ TEST(EwaldPlan, FreeSpaceLimit) {
     previous = correction.norm();
   }
 }
+
+// One rank's part (ewald_plan.h, SourceRows): on a whole grid, the plans of two blocks of the
+// sources sum to the plan of all (the sums are linear in the sources); rows that are not rows
+// of the sources are refused.
+TEST(EwaldPlan, PlansOfSourceBlocksSumToTheWhole) {
+  const Random1000& r = random1000();
+  const EwaldChoice choice = choose_ewald_parameters(EwaldKernel::stresslet, 1e-8, r.box, 1000, 1000);
+  const auto grid = std::make_shared<const SpmeGrid>(r.box, choice.parameters);
+  EwaldPlan whole(grid, r.xs, r.xt), first(grid, r.xs, r.xt, SourceRows{0, 400}),
+      rest(grid, r.xs, r.xt, SourceRows{400, 1000});
+  const PointField single = first.single_layer(r.f) + rest.single_layer(r.f);
+  const PointField double_ = first.double_layer(r.q, r.n) + rest.double_layer(r.q, r.n);
+  EXPECT_LT((single - whole.single_layer(r.f)).norm() / single.norm(), 1e-13);
+  EXPECT_LT((double_ - whole.double_layer(r.q, r.n)).norm() / double_.norm(), 1e-13);
+  EXPECT_THROW(EwaldPlan(grid, r.xs, r.xt, SourceRows{400, 1001}), std::invalid_argument);
+  EXPECT_THROW(EwaldPlan(grid, r.xs, r.xt, SourceRows{-1, 10}), std::invalid_argument);
+}
