@@ -64,6 +64,8 @@ class SpmeGrid {
   int first_plane() const { return slab_ ? slab_->first_plane() : 0; }
   int planes() const { return slab_ ? slab_->planes() : size(0); }
   int row_stride() const { return slab_ ? slab_->row_stride() : size(2); }  // points from row to row
+  // Points of this rank's real grid, padding included: planes() x K2 x row_stride().
+  std::size_t slab_points() const { return static_cast<std::size_t>(planes()) * size(1) * row_stride(); }
   // What this rank's real arrays and spectra of `components` interleaved grids hold.
   std::size_t real_size(int components) const;      // doubles
   std::size_t spectrum_size(int components) const;  // complex numbers

@@ -49,7 +49,7 @@ PointField SpmePlan::single_layer(const PointField& forces) {
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
-  const auto slab_points = static_cast<Eigen::Index>(grid_->planes()) * grid_->size(1) * grid_->row_stride();
+  const auto slab_points = static_cast<Eigen::Index>(grid_->slab_points());
   if (spreading.rows() != slab_points || spreading.cols() != x.rows())
     throw std::invalid_argument("SPME: a spreading matrix of " + std::to_string(spreading.rows()) + " x " +
                                 std::to_string(spreading.cols()) + " for " + std::to_string(x.rows()) +

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +18,7 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
       first_plane_(grid.first_plane()),
       planes_(grid.planes()),
       row_stride_(grid.row_stride()),
+      slab_points_(grid.slab_points()),
       points_(static_cast<int>(points.rows())) {
   const int n = points_;
   const PeriodicBox& box = grid.box();
@@ -112,7 +112,7 @@ void SpmeStencils::spread_point(int i, const double* density, double* grid) cons
 
 template <int C>
 void SpmeStencils::spread(const double* density, double* grid) const {
-  const std::size_t total = C * static_cast<std::size_t>(planes_) * K_[1] * row_stride_;
+  const std::size_t total = C * slab_points_;
 #pragma omp parallel for schedule(static)
   for (std::size_t g = 0; g < total; ++g) grid[g] = 0.0;
   const int n_slabs = static_cast<int>(slab_begin_.size()) - 1;
@@ -228,7 +228,7 @@ SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::Sparse
       column.resize(kept);
     }
   }
-  Eigen::SparseMatrix<double> s(static_cast<Eigen::Index>(planes_) * K_[1] * row_stride_, m);
+  Eigen::SparseMatrix<double> s(static_cast<Eigen::Index>(slab_points_), m);
   Eigen::VectorXi sizes(m);
   for (int n = 0; n < m; ++n) sizes[n] = static_cast<int>(columns[n].size());
   s.reserve(sizes);

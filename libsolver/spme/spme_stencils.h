@@ -65,6 +65,7 @@ class SpmeStencils {
   std::array<int, 3> K_;
   int p_;
   int first_plane_ = 0, planes_ = 0, row_stride_ = 0;  // this rank's part of the grid
+  std::size_t slab_points_ = 0;                          // SpmeGrid::slab_points()
   int points_ = 0;
   std::vector<int> order_;       // stencils are stored sorted: entry i is point order_[i]
   std::vector<int> first_;       // 3 per point: first grid index (mod K_d) of the stencil
