@@ -3,6 +3,7 @@
 // before a long run.
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -200,18 +201,41 @@ void print_ewald(const Scenario& s) {
   }
 }
 
-// The estimate of the run's peak memory by part, against its budget (memory_budget.h).
+// The estimate of the run's peak memory by part, against its budget (memory_budget.h); on
+// several ranks, of each rank against its share of the machine.
 void print_memory(const Scenario& s) {
   constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
-  std::printf("memory:  about %.2f GiB at the peak of a step, of a budget of %.2f GiB (%s)\n", s.memory.total() / kGiB,
-              s.memory_budget / kGiB, s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory");
-  for (const MemoryEstimate::Part& p : s.memory.parts) std::printf("         %-28s %8.3f GiB\n", p.name.c_str(), p.bytes / kGiB);
+  const MemoryEstimate& m = s.memory;
+  const char* budget = s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory";
+  if (m.ranks == 1) {
+    std::printf("memory:  about %.2f GiB at the peak of a step, of a budget of %.2f GiB (%s)\n", m.total() / kGiB,
+                s.memory_budget / kGiB, budget);
+  } else {
+    std::printf("memory:  on %d ranks, about %.2f GiB on each at the peak of a step, of a budget of %.2f GiB per rank "
+                "(%s shared by %d ranks)\n", m.ranks, m.total() / kGiB, s.memory_budget / kGiB, budget,
+                s.ranks_per_machine);
+  }
+  for (const MemoryEstimate::Part& p : m.parts) std::printf("         %-28s %8.3f GiB\n", p.name.c_str(), m.on_each_rank(p) / kGiB);
   std::printf("         (1.3 x the parts, for what a step builds and frees, + 60 MB for the program)\n");
-  if (s.memory.kept_coefficients > 0) {
+  if (m.kept_coefficients > 0) {
     std::printf("         Ewald pair coefficients %s (%.3f GiB of the cells' Ewald sum)\n",
                 s.keeps_pair_coefficients ? "kept between products" : "recomputed in every product to fit the budget",
-                s.memory.kept_coefficients / kGiB);
+                m.kept_coefficients / m.ranks / kGiB);
   }
+}
+
+int parse_ranks(const std::string& text) {
+  std::size_t used = 0;
+  long v = -1;
+  try {
+    v = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || v < 1 || v > 1'000'000) {
+    throw UsageError("rbcflow check: --ranks must be an integer from 1 to 1000000, got '" + text + "'");
+  }
+  return static_cast<int>(v);
 }
 
 }  // namespace
@@ -219,21 +243,25 @@ void print_memory(const Scenario& s) {
 int run_check(Args& args) {
   if (args.help_requested()) {
     std::printf(
-        "usage: rbcflow check CASE.toml\n"
+        "usage: rbcflow check CASE.toml [--ranks P]\n"
         "  Validates the case exactly as rbcflow run does before its first step: the vessel is\n"
         "  meshed and checked, the cells placed (or listed), perturbed and checked against the\n"
         "  wall and each other (exit status 2 with file, line and key on an error). Prints the\n"
         "  derived parameters: cell count and tube hematocrit of the meshed lumen, grid sizes, the\n"
         "  time step limit (37), the Ewald parameters the solver will choose, the output, and the\n"
         "  estimate of the run's peak memory by part against its budget (solver.memory_gib or the\n"
-        "  machine's memory; a case over it is refused).\n");
+        "  machine's memory; a case over it is refused).\n"
+        "  --ranks P: the memory estimate of each rank of a run on P ranks (mpirun -np P) that\n"
+        "  share this machine (or solver.memory_gib).\n");
     return 0;
   }
   const std::string file = args.positional("case file (CASE.toml)");
+  std::string ranks_text;
+  const std::optional<int> ranks = args.option("--ranks", ranks_text) ? std::optional(parse_ranks(ranks_text)) : std::nullopt;
   args.finish();
   const Case c = read_case(file);
   check_output_dir(c, c.output.dir);
-  const Scenario s = prepare_scenario(c);
+  const Scenario s = prepare_scenario(c, ranks);
 
   std::printf("case:    %s: \"%s\"\n", file.c_str(), c.title.c_str());
   print_domain(c);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "libsolver/parallel/slab_fft.h"
 #include "libsolver/quadrature/singular_quadrature.h"
 #include "scenario/scenario.h"
 
@@ -18,6 +19,12 @@ namespace {
 constexpr double kPeakFactor = 1.3;
 constexpr double kProgramBytes = 60e6;
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
+// The fractions of the parts that the ranks split (memory_budget.h).
+constexpr double kSplitEwaldWorkArrays = 0.15;  // with the slabs; none without
+constexpr double kSplitWall = 0.75;              // with the slabs
+constexpr double kSplitWallWithoutSlabs = 0.71;
+constexpr double kSplitCoupling = 0.9;
 
 const EwaldSum* find_sum(const Scenario& s, const std::string& what) {
   for (const EwaldSum& e : s.ewald)
@@ -35,12 +42,14 @@ std::string gib(double bytes) {
 
 double MemoryEstimate::total() const {
   double sum = 0;
-  for (const Part& p : parts) sum += p.bytes;
+  for (const Part& p : parts) sum += on_each_rank(p);
   return kPeakFactor * sum + kProgramBytes;
 }
 
-MemoryEstimate estimate_memory(const Scenario& s) {
+MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
   MemoryEstimate m;
+  m.ranks = ranks;
+  const bool slabs = SlabFft::available();
   const double cells = static_cast<double>(s.cells.size());
   const double wall_nodes = s.vessel ? static_cast<double>(s.vessel->surface.num_points()) : 0.0;
   const bool double_layer = s.c.domain.viscosity_ratio != 1.0;
@@ -51,11 +60,11 @@ MemoryEstimate estimate_memory(const Scenario& s) {
                                                                : default_radial_points(s.grids->order);
     const double Q = 2.0 * radial * radial;
     const double H = s.tube_hematocrit.value_or(0.0);
-    m.parts.push_back({"cells' geometry", cells * (2 * (2 * N + 1) * 4 * N * 96 + 56 * P)});
+    m.parts.push_back({"cells' geometry", cells * (2 * (2 * N + 1) * 4 * N * 96 + 56 * P), 1.0});
     if (double_layer) {
-      m.parts.push_back({"singular corrections", cells * (P * Q * 24 + 2.3 * P * P)});
+      m.parts.push_back({"singular corrections", cells * (P * Q * 24 + 2.3 * P * P), 1.0});
       const double near_targets = P * std::max(0.05, 2.0 * H);
-      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 64 + 2250)});
+      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 64 + 2250), 1.0});
     }
     if (const EwaldSum* e = find_sum(s, "cells, double layer")) {
       const double nodes = cells * P;
@@ -64,43 +73,57 @@ MemoryEstimate estimate_memory(const Scenario& s) {
       const double pairs = nodes * (4.0 * std::numbers::pi / 3.0) * rc * rc * rc * nodes / volume;
       const auto& K = e->choice.parameters.grid;
       m.kept_coefficients = 16 * pairs;
-      m.parts.push_back({"cells' Ewald sum", 6 * pairs + m.kept_coefficients + nodes * (8.3 * P + 250) +
-                                                 120.0 * K[0] * K[1] * K[2]});
+      const double split_bytes = 6 * pairs + m.kept_coefficients + nodes * (8.3 * P + 250);
+      const double work_arrays = 120.0 * K[0] * K[1] * K[2];
+      const double split = split_bytes + (slabs ? kSplitEwaldWorkArrays * work_arrays : 0.0);
+      m.parts.push_back({"cells' Ewald sum", split_bytes + work_arrays, split / (split_bytes + work_arrays)});
     }
   }
   if (wall_nodes > 0) {
-    m.parts.push_back({"wall", 72.5e3 * wall_nodes});
-    if (cells > 0) m.parts.push_back({"cells <-> wall", 21.5e3 * wall_nodes + 5.2e3 * cells * s.grids->n_grid->grid().size()});
+    m.parts.push_back({"wall", 72.5e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
+    if (cells > 0) {
+      m.parts.push_back({"cells <-> wall", 21.5e3 * wall_nodes + 5.2e3 * cells * s.grids->n_grid->grid().size(),
+                         kSplitCoupling});
+    }
   }
   return m;
 }
 
-double memory_budget(const Case& c) {
-  if (c.solver.memory_gib) return *c.solver.memory_gib * kGiB;
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return std::numeric_limits<double>::infinity();  // not known: no budget
-  return static_cast<double>(pages) * static_cast<double>(page);
+double memory_budget(const Case& c, int ranks_per_machine) {
+  double machine = std::numeric_limits<double>::infinity();  // not known: no budget
+  if (c.solver.memory_gib) {
+    machine = *c.solver.memory_gib * kGiB;
+  } else if (const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE); pages > 0 && page > 0) {
+    machine = static_cast<double>(pages) * static_cast<double>(page);
+  }
+  return machine / std::max(1, ranks_per_machine);
 }
 
-void apply_memory_budget(Scenario& s) {
-  s.memory = estimate_memory(s);
-  s.memory_budget = memory_budget(s.c);
+void apply_memory_budget(Scenario& s, RankLayout layout) {
+  s.memory = estimate_memory(s, layout.ranks);
+  s.memory_budget = s.options.domain.ranks.min(memory_budget(s.c, layout.per_machine));
+  s.ranks_per_machine = layout.per_machine;
   const double total = s.memory.total();
   if (total <= s.memory_budget) return;
-  const double without = total - kPeakFactor * s.memory.kept_coefficients;
+  const double without = total - kPeakFactor * s.memory.kept_coefficients / layout.ranks;
   if (s.memory.kept_coefficients > 0 && without <= s.memory_budget) {
     s.options.domain.max_kept_pairs = 0;
     s.keeps_pair_coefficients = false;
     return;
   }
   std::string parts;
-  for (const MemoryEstimate::Part& p : s.memory.parts) parts += (parts.empty() ? "" : ", ") + p.name + " " + gib(p.bytes);
+  for (const MemoryEstimate::Part& p : s.memory.parts)
+    parts += (parts.empty() ? "" : ", ") + p.name + " " + gib(s.memory.on_each_rank(p));
+  const bool ranks = layout.ranks > 1;
+  const std::string budget = s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory";
   throw case_error(s.c, "solver.memory_gib",
-                   "the run needs about " + gib(without) + " at its peak (" + parts +
-                       "), more than the memory budget of " + gib(s.memory_budget) +
-                       (s.c.solver.memory_gib ? "" : " (the machine's memory)") +
+                   "the run needs about " + gib(without) + (ranks ? " on each of its ranks" : "") + " at its peak (" +
+                       parts + "), more than the memory budget of " + gib(s.memory_budget) +
+                       (ranks ? " per rank (" + budget + " shared by " + std::to_string(layout.per_machine) + " ranks)"
+                              : s.c.solver.memory_gib ? "" : " (the machine's memory)") +
                        "; use fewer cells (a shorter period or a lower hematocrit), a smaller cells.order, "
-                       "a coarser wall (vessel.element_size), or a machine with more memory");
+                       "a coarser wall (vessel.element_size), " +
+                       (ranks ? "fewer ranks on each machine, or machines with more memory" : "or a machine with more memory"));
 }
 
 }  // namespace rbcflow

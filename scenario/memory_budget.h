@@ -18,6 +18,15 @@
 // layer holds nothing past its build (cell_layers.h). Calibrated at 303b38c on bench_step's
 // tube27 (N = 16, lambda = 5, Ewald 1e-6: predicted and measured peak in docs/performance.md);
 // the parts of other cases scale as above.
+//
+// On P ranks (mpirun) each rank holds its own cells' share of what is split and all of what is
+// repeated (docs/scaling.md). The split fractions, measured part by part on bench_step tube8 at
+// 79b58a5 (2 ranks against 1 process): the cells' geometry, corrections and Ewald pairs, and the
+// cell-wall coupling but for the wall's stencils at the cells (0.9), are split; of the Ewald work
+// arrays 0.15 with FFTW's MPI library (the slabs), else none; of the wall 0.75 (its assembled
+// real-space rows and their spreading rows; 0.71 without the slabs): its near field, LU and
+// recycled space are repeated. The ranks on one machine share its memory: each gets the budget
+// divided by their number.
 #include <string>
 #include <vector>
 
@@ -27,26 +36,38 @@ namespace rbcflow {
 
 struct Scenario;
 
+// The ranks a run is split over: `ranks` in all, at most `per_machine` of them on one machine.
+struct RankLayout {
+  int ranks = 1;
+  int per_machine = 1;
+};
+
 struct MemoryEstimate {
   struct Part {
     std::string name;
-    double bytes = 0;
+    double bytes = 0;  // on one process
+    double split = 0;  // the fraction of `bytes` divided over the ranks
   };
   std::vector<Part> parts;
-  double kept_coefficients = 0;  // of the cells' Ewald part: what not keeping them saves
-  double total() const;          // the peak: 1.3 x the parts + the program
+  double kept_coefficients = 0;  // of the cells' Ewald part (split): what not keeping them saves
+  int ranks = 1;
+  double on_each_rank(const Part& p) const { return p.bytes * (1.0 - p.split + p.split / ranks); }
+  double total() const;  // the peak of each rank: 1.3 x its parts + the program
 };
 
-MemoryEstimate estimate_memory(const Scenario& s);
+MemoryEstimate estimate_memory(const Scenario& s, int ranks = 1);
 
 // Bytes: [solver] memory_gib, or the machine's physical memory when it is not set (infinite
-// where the system does not say).
-double memory_budget(const Case& c);
+// where the system does not say); for each rank its share of its machine.
+double memory_budget(const Case& c, int ranks_per_machine = 1);
 
-// Fits the scenario's estimate (s.memory) into the budget (s.memory_budget): keeps the
-// Ewald pair coefficients when everything fits with them, drops them (products recompute them:
-// slower, no less accurate) when only then it fits, and otherwise throws CaseError naming
-// solver.memory_gib with the estimate and what to change.
-void apply_memory_budget(Scenario& s);
+// Fits the scenario's estimate (s.memory) for `layout` into the budget (s.memory_budget, per
+// rank): keeps the Ewald pair coefficients when everything fits with them, drops them
+// (products recompute them: slower, no less accurate) when only then it fits, and otherwise
+// throws CaseError naming solver.memory_gib with the estimate and what to change. `layout`:
+// the run's ranks and those on this rank's machine. In a run on several ranks
+// (s.options.domain.ranks) every rank takes the decision of the smallest of the ranks'
+// budgets, so that all hold the same operators.
+void apply_memory_budget(Scenario& s, RankLayout layout);
 
 }  // namespace rbcflow

@@ -117,11 +117,13 @@ std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes
 
 }  // namespace
 
-Scenario prepare_scenario(const Case& c) {
+Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
   refuse_ewald_overrides(c);
   Scenario s;
   s.c = c;
   s.options = solver_options(c);
+  const Communicator& ranks = s.options.domain.ranks;
+  const RankLayout layout = planned ? RankLayout{*planned, *planned} : RankLayout{ranks.size(), ranks.ranks_on_this_machine()};
   s.steps = std::max(1L, static_cast<long>(std::ceil(c.time.end / s.options.dt - 1e-9)));
   if (c.vessel) {
     s.vessel = build_vessel(c);
@@ -136,7 +138,7 @@ Scenario prepare_scenario(const Case& c) {
   const long wall_nodes = s.vessel ? s.vessel->surface.num_points() : 0;
   if (!c.cells) {
     if (c.domain.kind == DomainKind::periodic) s.ewald = ewald_sums(c, 0, wall_nodes, 0);
-    apply_memory_budget(s);
+    apply_memory_budget(s, layout);
     return s;
   }
   const CaseCells& k = *c.cells;
@@ -160,7 +162,7 @@ Scenario prepare_scenario(const Case& c) {
   if (c.domain.kind == DomainKind::periodic) {
     s.ewald = ewald_sums(c, cell_nodes, wall_nodes, s.options.domain.max_kept_pairs);
   }
-  apply_memory_budget(s);
+  apply_memory_budget(s, layout);
   if (!s.keeps_pair_coefficients && c.domain.kind == DomainKind::periodic) {
     s.ewald = ewald_sums(c, cell_nodes, wall_nodes, s.options.domain.max_kept_pairs);  // the choice without them
   }

@@ -40,14 +40,16 @@ struct Scenario {
   std::optional<double> tube_hematocrit;   // the cells' volume over the lumen's, with a vessel
   std::optional<std::string> placement_note;  // cells placed pre-deformed: how
   std::vector<EwaldSum> ewald;             // in a periodic domain
-  MemoryEstimate memory;                   // the run's peak, by part (memory_budget.h)
-  double memory_budget = 0;                // bytes
+  MemoryEstimate memory;                   // the run's peak on each rank, by part (memory_budget.h)
+  double memory_budget = 0;                // bytes, for each rank
+  int ranks_per_machine = 1;               // that share the machine's memory
   bool keeps_pair_coefficients = true;     // false: dropped to fit the budget
 };
 
 // Throws CaseError (exit 2) naming the key for everything that shows only once the vessel is
-// meshed or the cells placed, and for a run that cannot fit its memory budget.
-Scenario prepare_scenario(const Case& c);
+// meshed or the cells placed, and for a run that cannot fit its memory budget: that of the
+// run's ranks (mpirun), or of `planned` ranks on this machine (`rbcflow check --ranks P`).
+Scenario prepare_scenario(const Case& c, std::optional<int> planned = std::nullopt);
 
 // The stepper of a prepared scenario (its cells are moved into it): the wall's boundary
 // elements are built here, and a tube-velocity drive's cell-free wall solve.

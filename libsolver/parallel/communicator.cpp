@@ -60,6 +60,23 @@ long Communicator::sum(long value) const {
   return total;
 }
 
+double Communicator::min(double value) const {
+  if (size_ == 1) return value;
+  double low = 0;
+  MPI_Allreduce(&value, &low, 1, MPI_DOUBLE, MPI_MIN, comm_of(handle_));
+  return low;
+}
+
+int Communicator::ranks_on_this_machine() const {
+  if (size_ == 1) return 1;
+  MPI_Comm machine;
+  MPI_Comm_split_type(comm_of(handle_), MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &machine);
+  int count = 1;
+  MPI_Comm_size(machine, &count);
+  MPI_Comm_free(&machine);
+  return count;
+}
+
 void Communicator::check_same(long value, const std::string& what) const {
   if (size_ == 1) return;
   long low = 0, high = 0;
@@ -102,6 +119,8 @@ void MpiSession::abort_all(int status) {
 Communicator Communicator::world() { return {}; }
 void Communicator::sum(std::span<double>) const {}
 long Communicator::sum(long value) const { return value; }
+double Communicator::min(double value) const { return value; }
+int Communicator::ranks_on_this_machine() const { return 1; }
 void Communicator::check_same(long, const std::string&) const {}
 bool built_with_mpi() { return false; }
 std::string mpi_library_version() { return {}; }

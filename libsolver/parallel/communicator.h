@@ -33,6 +33,10 @@ class Communicator {
     sum(std::span<double>(values.data(), static_cast<std::size_t>(values.size())));
   }
   long sum(long value) const;
+  // The smallest of the ranks' values, the same on every rank.
+  double min(double value) const;
+  // How many of the ranks share this rank's machine (its node: MPI_COMM_TYPE_SHARED).
+  int ranks_on_this_machine() const;
   // Throws std::runtime_error naming `what` when the ranks hold different values of it (a
   // replicated quantity that diverged: the run cannot go on consistently).
   void check_same(long value, const std::string& what) const;

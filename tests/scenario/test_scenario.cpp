@@ -160,3 +160,45 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   EXPECT_NE(e.find("solver.memory_gib: the run needs about"), std::string::npos) << e;
   EXPECT_NE(e.find("use fewer cells"), std::string::npos) << e;
 }
+
+// On P ranks (rbcflow check --ranks P) each rank holds its share of the split parts and all of
+// the repeated ones, and the ranks on one machine share its memory: a budget that one process
+// fits can be too small for two ranks on the same machine, and the refusal says per rank.
+TEST(Scenario, MemoryBudgetOfRanksSharingAMachine) {
+  const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
+                           "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = 0.3\n";
+  const Scenario one = prepare_scenario(parse_case(tube, "m.toml"));
+  const Scenario two = prepare_scenario(parse_case(tube, "m.toml"), 2);
+  EXPECT_EQ(one.memory.ranks, 1);
+  EXPECT_EQ(two.memory.ranks, 2);
+  EXPECT_EQ(two.ranks_per_machine, 2);
+  EXPECT_NEAR(two.memory_budget, 0.5 * one.memory_budget, 1e-9 * one.memory_budget);
+  ASSERT_EQ(one.memory.parts.size(), two.memory.parts.size());
+  for (std::size_t i = 0; i < one.memory.parts.size(); ++i) {
+    const MemoryEstimate::Part& p = two.memory.parts[i];
+    EXPECT_EQ(p.bytes, one.memory.parts[i].bytes) << p.name;  // the same run, on one process
+    EXPECT_LE(two.memory.on_each_rank(p), p.bytes) << p.name;
+    EXPECT_GE(two.memory.on_each_rank(p), 0.5 * p.bytes) << p.name;
+  }
+  // Each rank holds more than half a process (what is repeated), less than a whole one.
+  const double per_rank = two.memory.total();
+  EXPECT_LT(per_rank, one.memory.total());
+  EXPECT_GT(2 * per_rank, one.memory.total());
+
+  constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+  const double without_two = per_rank - 1.3 * two.memory.kept_coefficients / 2;
+  ASSERT_LT(one.memory.total(), 2 * without_two);
+  const std::string budget = std::to_string(0.5 * (one.memory.total() + 2 * without_two) / gib);
+  const Case fits_one = parse_case(tube + "[solver]\nmemory_gib = " + budget + "\n", "m.toml");
+  EXPECT_TRUE(prepare_scenario(fits_one).keeps_pair_coefficients);
+  try {
+    prepare_scenario(fits_one, 2);
+    ADD_FAILURE() << "two ranks on one machine with " << budget << " GiB were not refused";
+  } catch (const CaseError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("solver.memory_gib: the run needs about"), std::string::npos) << what;
+    EXPECT_NE(what.find("on each of its ranks"), std::string::npos) << what;
+    EXPECT_NE(what.find("per rank (solver.memory_gib shared by 2 ranks)"), std::string::npos) << what;
+    EXPECT_NE(what.find("fewer ranks on each machine"), std::string::npos) << what;
+  }
+}

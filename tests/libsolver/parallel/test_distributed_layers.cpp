@@ -65,6 +65,16 @@ TEST(Ownership, BlocksCoverTheCellsInRankOrder) {
   }
 }
 
+// The ranks' smallest value and how many share a machine (the memory budget's inputs,
+// scenario/memory_budget.h): the test's ranks all run on this machine.
+TEST(Communicator, MinimumAndRanksOnThisMachine) {
+  const Communicator world = Communicator::world();
+  EXPECT_EQ(world.min(10.0 + world.rank()), 10.0);
+  EXPECT_EQ(world.min(-0.5 * world.rank()), -0.5 * (world.size() - 1));
+  EXPECT_EQ(world.ranks_on_this_machine(), world.size());
+  EXPECT_EQ(Communicator{}.ranks_on_this_machine(), 1);
+}
+
 TEST(DistributedLayers, ProductsOnTheRanksEqualOneRank) {
   const Communicator world = Communicator::world();
   std::printf("  %d rank(s)\n", world.size());
