@@ -69,6 +69,44 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sou
     neighbors_.emplace(grid->box(), grid->parameters().cutoff, rows_of(sources, rows), targets);
 }
 
+namespace {
+
+TargetRows checked(TargetRows rows, Eigen::Index n) {
+  if (rows.begin < 0 || rows.end < rows.begin || rows.end > n)
+    throw std::invalid_argument("EwaldPlan: target rows [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") of " + std::to_string(n));
+  return rows;
+}
+
+PointField rows_of(const PointField& points, TargetRows rows) { return points.middleRows(rows.begin, rows.end - rows.begin); }
+
+}  // namespace
+
+EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
+                     TargetRows rows)
+    : target_rows_(checked(rows, targets.rows())),
+      n_targets_(targets.rows()),
+      smooth_at_rows_(!grid->distributed()),
+      smooth_(grid->distributed() ? SpmePlan(grid, sources, targets) : SpmePlan(grid, sources, rows_of(targets, rows))) {
+  if (has_real_space_sources())
+    neighbors_.emplace(grid->box(), grid->parameters().cutoff, sources, rows_of(targets, rows));
+}
+
+void EwaldPlan::add_at_rows(PointField& u, const PointField& at_rows) const {
+  if (target_rows_) {
+    u.middleRows(target_rows_->begin, target_rows_->end - target_rows_->begin) += at_rows;
+  } else {
+    u += at_rows;
+  }
+}
+
+PointField EwaldPlan::smooth_at_every_target(PointField smooth) const {
+  if (!smooth_at_rows_) return smooth;
+  PointField u = PointField::Zero(n_targets_, 3);
+  add_at_rows(u, smooth);
+  return u;
+}
+
 const PointField& EwaldPlan::real_space_rows(const PointField& density, PointField& copy) const {
   return rows_ ? (copy = rows_of(density, *rows_)) : density;
 }
@@ -79,10 +117,12 @@ const PointField& EwaldPlan::smooth_rows(const PointField& density, PointField& 
 
 PointField EwaldPlan::single_layer(const PointField& forces) {
   PointField copy;
-  PointField u = smooth_.single_layer(smooth_rows(forces, copy));
+  PointField u = smooth_at_every_target(smooth_.single_layer(smooth_rows(forces, copy)));
   const auto start = std::chrono::steady_clock::now();
-  if (has_real_space_sources())
-    u += real_space_single_layer(neighbors(), xi(), real_space_rows(forces, copy), kept(single_coefficients_), &shares_);
+  if (has_real_space_sources()) {
+    add_at_rows(u, real_space_single_layer(neighbors(), xi(), real_space_rows(forces, copy), kept(single_coefficients_),
+                                           &shares_));
+  }
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;
@@ -90,14 +130,14 @@ PointField EwaldPlan::single_layer(const PointField& forces) {
 
 PointField EwaldPlan::smooth_single_layer(const PointField& forces) {
   PointField copy;
-  PointField u = smooth_.single_layer(smooth_rows(forces, copy));
+  PointField u = smooth_at_every_target(smooth_.single_layer(smooth_rows(forces, copy)));
   timings_.real_space = 0.0;
   timings_.smooth = smooth_.timings();
   return u;
 }
 
 PointField EwaldPlan::smooth_single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
-  PointField u = smooth_.single_layer(spreading, x);
+  PointField u = smooth_at_every_target(smooth_.single_layer(spreading, x));
   timings_.real_space = 0.0;
   timings_.smooth = smooth_.timings();
   return u;
@@ -106,11 +146,12 @@ PointField EwaldPlan::smooth_single_layer(const SpmeStencils::SpreadingMatrix& s
 PointField EwaldPlan::double_layer(const PointField& q, const PointField& normals) {
   double_products_ = true;
   PointField q_copy, n_copy;
-  PointField u = smooth_.double_layer(smooth_rows(q, q_copy), smooth_rows(normals, n_copy));
+  PointField u = smooth_at_every_target(smooth_.double_layer(smooth_rows(q, q_copy), smooth_rows(normals, n_copy)));
   const auto start = std::chrono::steady_clock::now();
-  if (has_real_space_sources())
-    u += real_space_double_layer(neighbors(), xi(), real_space_rows(q, q_copy), real_space_rows(normals, n_copy),
-                                 kept(double_coefficients_), &shares_);
+  if (has_real_space_sources()) {
+    add_at_rows(u, real_space_double_layer(neighbors(), xi(), real_space_rows(q, q_copy),
+                                           real_space_rows(normals, n_copy), kept(double_coefficients_), &shares_));
+  }
   timings_.real_space = seconds_between(start, std::chrono::steady_clock::now());
   timings_.smooth = smooth_.timings();
   return u;

@@ -65,6 +65,10 @@ struct EwaldTimings {
 struct SourceRows {
   Eigen::Index begin = 0, end = 0;
 };
+// The rows [begin, end) of a plan's targets at which one rank sums the real-space pairs.
+struct TargetRows {
+  Eigen::Index begin = 0, end = 0;
+};
 
 class EwaldPlan {
  public:
@@ -80,6 +84,11 @@ class EwaldPlan {
   // stencils are then shared).
   EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
             SourceRows rows, PairShares shares = {});
+  // The same split by targets: the real-space pairs at the targets `rows`, the smooth part on
+  // this rank's slab of a distributed grid at every target, else at the targets `rows` too.
+  // Products give every target's row (zero where this rank adds nothing).
+  EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
+            TargetRows rows);
 
   PointField single_layer(const PointField& forces);
   PointField double_layer(const PointField& q, const PointField& normals);
@@ -114,10 +123,19 @@ class EwaldPlan {
   // they are some rows of `density`).
   const PointField& real_space_rows(const PointField& density, PointField& copy) const;
   const PointField& smooth_rows(const PointField& density, PointField& copy) const;
-  bool has_real_space_sources() const { return !rows_ || rows_->end > rows_->begin; }
+  bool has_real_space_sources() const {
+    return (!rows_ || rows_->end > rows_->begin) && (!target_rows_ || target_rows_->end > target_rows_->begin);
+  }
+  // Adds a result at the targets of the real-space sum (or of the smooth part) to `u`, a
+  // result at every target.
+  void add_at_rows(PointField& u, const PointField& at_rows) const;
+  PointField smooth_at_every_target(PointField smooth) const;
 
   std::optional<SourceRows> rows_;         // the real-space sources of one rank, if not all
   bool smooth_of_rows_ = false;            // the smooth part's sources are rows_ too
+  std::optional<TargetRows> target_rows_;  // the real-space targets of one rank, if not all
+  Eigen::Index n_targets_ = 0;             // all of them
+  bool smooth_at_rows_ = false;            // the smooth part's targets are target_rows_ too
   std::optional<NeighborList> neighbors_;  // empty after release_real_space()
   SpmePlan smooth_;
   PairShares shares_;

@@ -227,20 +227,16 @@ FlowSolution CellStepper::solve() const {
     if (options_.domain.box) {
       background.rowwise() = s.mean_velocity.transpose();
       if (wall_) {
-        // Each rank evaluates the wall's velocity at its own cells' nodes; the ranks' rows add up.
+        // Each rank evaluates the wall's near field and real-space sum at its own cells' nodes
+        // and the smooth part on its slab of the grid; the ranks' parts add up.
         const Communicator& ranks = options_.domain.ranks;
         const OwnedRange& owned = layers->owned();
-        if (!wall_at_cells && !owned.empty()) {
+        if (!wall_at_cells) {
           ScopedTimer timer(timing.wall_at_cells_build);
-          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x.middleRows(owned.begin * np, owned.size() * np),
-                                                   nc * np));
+          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x, TargetRows{owned.begin * np, owned.end * np}, ranks));
         }
         ScopedTimer timer(timing.wall_at_cells);
-        Eigen::MatrixXd wall_velocity = Eigen::MatrixXd::Zero(nc * np, 3);
-        if (wall_at_cells) {
-          wall_velocity.middleRows(owned.begin * np, owned.size() * np) =
-              WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
-        }
+        Eigen::MatrixXd wall_velocity = WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
         ranks.sum(wall_velocity);
         background += wall_velocity;
       }

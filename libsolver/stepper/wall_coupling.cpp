@@ -61,6 +61,10 @@ WallOperator WallCoupling::operator_at(const PointField& points, long chosen_for
                       chosen_for_points);
 }
 
+WallOperator WallCoupling::operator_at(const PointField& points, TargetRows rows, const Communicator& ranks) const {
+  return WallOperator(elements_, points, rows, box_, ewald_tolerance_, grid_cache_.get(), ranks);
+}
+
 PointField WallCoupling::velocity_at(WallOperator& at_points, const PointField& force) {
   return (-1.0 / (8.0 * std::numbers::pi)) * at_points.apply(force);
 }

@@ -41,6 +41,9 @@ class WallCoupling {
   // the operator with `points` as targets, then the velocity for a force. chosen_for_points:
   // as WallOperator's chosen_for_targets (one rank's share of the points).
   WallOperator operator_at(const PointField& points, long chosen_for_points = 0) const;
+  // One rank's part of the operator at every point of the ranks (WallOperator's TargetRows
+  // constructor): the near field and real space at its `rows`, the smooth part on its slab.
+  WallOperator operator_at(const PointField& points, TargetRows rows, const Communicator& ranks) const;
   static PointField velocity_at(WallOperator& at_points, const PointField& force);
   void report_memory(MemoryReport& report) const {
     solver_.report_memory(report);

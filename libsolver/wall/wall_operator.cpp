@@ -1,5 +1,8 @@
 #include "wall_operator.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "libsolver/common/memory_report.h"
 #include "libsolver/kernels/ewald_kernels.h"
 #include "libsolver/kernels/stokes_kernels.h"
@@ -46,6 +49,19 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   }
 }
 
+WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
+                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks)
+    : elements_(std::move(elements)), targets_(targets), target_rows_(rows), ranks_(ranks) {
+  if (rows.begin < 0 || rows.end < rows.begin || rows.end > targets.rows())
+    throw std::invalid_argument("WallOperator: target rows [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") of " + std::to_string(targets.rows()));
+  near_ = near_field(*elements_, targets_.middleRows(rows.begin, rows.end - rows.begin));
+  for (const auto& [t, q] : near_.coincident) targets_.row(rows.begin + t) = elements_->points.row(q);
+  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, elements_->points.rows(),
+                            targets_.rows(), {}, ranks_),
+                 wrapped(elements_->points, box), wrapped(targets_, box), rows);
+}
+
 PointField WallOperator::apply(const PointField& f) {
   PointField u;
   if (near_and_real_) {
@@ -66,10 +82,11 @@ PointField WallOperator::apply(const PointField& f) {
     return u + to_field(rest);
   }
   const PointField density = elements_->weighted_density(f);
+  const Eigen::Index first = target_rows_ ? target_rows_->begin : 0;  // of the near field's targets
   if (ewald_) {
     u = ewald_->single_layer(density);
     const double self = ewald_real_stokeslet_self(ewald_->xi());
-    for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+    for (const auto& [t, q] : near_.coincident) u.row(first + t) += self * density.row(q);
   } else {
     u = PointField::Zero(targets_.rows(), 3);
     const PointField& y = elements_->points;
@@ -85,7 +102,8 @@ PointField WallOperator::apply(const PointField& f) {
     }
   }
   const Eigen::VectorXd correction = near_.correction * to_vector(f);
-  return u + to_field(correction);
+  u.middleRows(first, correction.size() / 3) += to_field(correction);
+  return u;
 }
 
 void WallOperator::report_memory(MemoryReport& report, const std::string& prefix) const {

@@ -41,6 +41,14 @@ class WallOperator {
                Communicator ranks = {});
 
 
+  // One rank's part of the operator at every target of a run's ranks (the cells' nodes): the
+  // near field and real-space sum at its `rows` of the targets, the smooth part at every
+  // target on its slab of the grid (chosen for all the targets; split over `ranks` where the
+  // build can, else at its rows only). Products give every target's row; the ranks' sum is the
+  // whole operator's product.
+  WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
+               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks);
+
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);
 
@@ -54,7 +62,8 @@ class WallOperator {
  private:
   std::shared_ptr<const WallElements> elements_;
   PointField targets_;
-  NearField near_;
+  NearField near_;                    // at the targets, or at target_rows_ of them
+  std::optional<TargetRows> target_rows_;
   std::optional<EwaldPlan> ewald_;
   // Periodic box, RealSpace::assembled: the real-space part of the Ewald sum as a sparse matrix
   // (wall_real_space.h) plus the near-field correction, for an operator applied many times at

@@ -6,6 +6,7 @@
 // Run on one process, the same tests compare one rank with itself (and pass trivially).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -201,6 +202,43 @@ TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
   } else {
     EXPECT_EQ(d, 0.0);
   }
+}
+
+// The wall's velocity at points shared by the ranks (wall_operator.h, TargetRows): each rank's
+// near field and real space at its block of the points, the smooth part on its slab at every
+// point; the ranks' sum equals the operator at every point on one rank, to the rounding of the
+// transforms and the sum. Points near the wall (near-field corrections) and in its middle, in
+// blocks that cross the slabs; a rank with no points (3 ranks, 2 blocks) still takes part.
+TEST(DistributedWall, VelocityAtPointsOnTheRanksEqualsOneRank) {
+  const Communicator world = Communicator::world();
+  TubeSpec spec;
+  spec.diameter = 3.2;
+  spec.box = Eigen::Vector3d(4.0, 4.0, 4.0);
+  spec.element_size = 0.5;
+  auto e = std::make_shared<const WallElements>(tube(spec));
+  const PeriodicBox box(spec.box);
+  PointField points(120, 3);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double angle = 0.37 * static_cast<double>(i), radius = i % 3 == 0 ? 1.5 : 0.8 * (i % 5) / 4.0;
+    points.row(i) << 2.0 + radius * std::cos(angle), 2.0 + radius * std::sin(angle), 4.0 * (i + 0.5) / points.rows();
+  }
+  const PointField f = smooth_density(e->wall.surface.points);
+  WallOperator one(e, points, box, 1e-6);
+  ASSERT_GT(one.near().correction.nonZeros(), 0);  // some points are near the wall
+  const PointField whole = one.apply(f);
+  const int blocks = std::min(world.size(), 2);
+  const OwnedRange mine = world.rank() < blocks ? owned_block(static_cast<int>(points.rows()), world.rank(), blocks)
+                                                : OwnedRange{static_cast<int>(points.rows()), static_cast<int>(points.rows())};
+  WallOperator part(e, points, TargetRows{mine.begin, mine.end}, box, 1e-6, nullptr, world);
+  PointField u = part.apply(f);
+  ASSERT_EQ(u.rows(), points.rows());
+  world.sum(u);
+  const double d = relative(u, whole);
+  std::printf("  wall velocity at %ld points on %d ranks: %.1e from one rank's\n", static_cast<long>(points.rows()),
+              world.size(), d);
+  EXPECT_LT(d, 1e-13);
+  EXPECT_EQ(spread_over_ranks(world, u), 0.0);
+  EXPECT_THROW(WallOperator(e, points, TargetRows{5, 3}, box, 1e-6, nullptr, {}), std::invalid_argument);
 }
 
 int main(int argc, char** argv) {
