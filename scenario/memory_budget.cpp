@@ -22,8 +22,8 @@ constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 // The fractions of the parts that the ranks split (memory_budget.h).
 constexpr double kSplitEwaldWorkArrays = 0.15;  // with the slabs; none without
-constexpr double kSplitWall = 0.75;              // with the slabs
-constexpr double kSplitWallWithoutSlabs = 0.71;
+constexpr double kSplitWall = 0.84;              // with the slabs
+constexpr double kSplitWallWithoutSlabs = 0.77;
 constexpr double kSplitCoupling = 0.9;
 
 const EwaldSum* find_sum(const Scenario& s, const std::string& what) {

@@ -20,13 +20,13 @@
 // the parts of other cases scale as above.
 //
 // On P ranks (mpirun) each rank holds its own cells' share of what is split and all of what is
-// repeated (docs/scaling.md). The split fractions, measured part by part on bench_step tube8 at
-// 79b58a5 (2 ranks against 1 process): the cells' geometry, corrections and Ewald pairs, and the
-// cell-wall coupling but for the wall's stencils at the cells (0.9), are split; of the Ewald work
-// arrays 0.15 with FFTW's MPI library (the slabs), else none; of the wall 0.75 (its assembled
-// real-space rows and their spreading rows; 0.71 without the slabs): its near field, LU and
-// recycled space are repeated. The ranks on one machine share its memory: each gets the budget
-// divided by their number.
+// repeated (docs/scaling.md). The split fractions, measured part by part on bench_step tube8
+// (2 ranks against 1 process, 79b58a5 and, for the wall, the commit that freed its near field):
+// the cells' geometry, corrections and Ewald pairs, and the cell-wall coupling but for the
+// wall's stencils at the cells (0.9), are split; of the Ewald work arrays 0.15 with FFTW's MPI
+// library (the slabs), else none; of the wall 0.84 (its assembled real-space rows and their
+// spreading rows and grid; 0.77 without the slabs): its LU and recycled space are repeated.
+// The ranks on one machine share its memory: each gets the budget divided by their number.
 #include <string>
 #include <vector>
 

@@ -45,7 +45,8 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                                                   Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction),
                                                   owned_block(static_cast<int>(targets_.rows()), ranks_)));
     node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
-    ewald_->release_real_space();  // held in near_and_real_ now
+    ewald_->release_real_space();                   // held in near_and_real_ now
+    near_.correction = Eigen::SparseMatrix<double>();  // so is this
   }
 }
 

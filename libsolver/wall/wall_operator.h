@@ -53,7 +53,10 @@ class WallOperator {
   PointField apply(const PointField& f);
 
   const WallElements& elements() const { return *elements_; }
+  // With RealSpace::assembled the correction is part of the assembled rows and empty here.
   const NearField& near() const { return near_; }
+  // Frees near().local, for the wall solver once it holds its factorisation.
+  void release_local_near_field() { near_.local = Eigen::SparseMatrix<double>(); }
   const PointField& targets() const { return targets_; }
   int num_targets() const { return static_cast<int>(targets_.rows()); }
   // "<prefix>: near field", "<prefix>: assembled real space", "<prefix> Ewald: ..." (memory_report.h).

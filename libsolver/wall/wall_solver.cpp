@@ -14,6 +14,7 @@ WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
   near_lu_.compute(op_.near().local);
   if (near_lu_.info() != Eigen::Success)
     throw std::runtime_error("wall solver: the near-field preconditioner is singular");
+  op_.release_local_near_field();  // the factorisation keeps its own copy
 }
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
