@@ -1,6 +1,7 @@
 # Finds every package of the stack from Debian 12 packages (Eigen 3.4, FFTW 3.3, gmsh 4.8,
 # VTK 9.1, CGAL 5.5, serial HDF5 1.10, GoogleTest, toml11 3.7, OpenMP), and OpenMPI for distributed
-# runs when installed.
+# runs when installed (with FFTW's MPI library and HDF5's OpenMPI build, which then replaces the
+# serial one).
 # A missing package stops configuration with the name of the Debian package to install;
 # scripts/install-deps.sh installs all of them.
 
@@ -55,6 +56,7 @@ rbcflow_require(OpenMP_CXX_FOUND "g++ (libgomp)" "OpenMP for C++")
 option(RBCFLOW_MPI "Build for distributed runs with MPI (mpirun -np P rbcflow run)" ON)
 set(RBCFLOW_WITH_MPI OFF)
 set(RBCFLOW_WITH_FFTW_MPI OFF)
+set(RBCFLOW_WITH_PARALLEL_HDF5 OFF)
 if(RBCFLOW_MPI)
   find_package(MPI QUIET COMPONENTS CXX)
   if(MPI_CXX_FOUND)
@@ -68,9 +70,25 @@ if(RBCFLOW_MPI)
     else()
       message(STATUS "rbcflow: FFTW's MPI library not found (Debian: libfftw3-mpi-dev): every rank transforms the whole Ewald grid")
     endif()
+    # Checkpoints written by the ranks together (io/hdf5_file.h): HDF5's OpenMPI build, linked in
+    # place of the serial one (one HDF5 per process: no other library rbcflow loads needs HDF5).
+    pkg_check_modules(HDF5_OPENMPI QUIET IMPORTED_TARGET hdf5-openmpi)
+    if(HDF5_OPENMPI_FOUND)
+      set(RBCFLOW_WITH_PARALLEL_HDF5 ON)
+    else()
+      message(STATUS "rbcflow: parallel HDF5 not found (Debian: libhdf5-openmpi-dev): rank 0 writes the checkpoints")
+    endif()
   else()
     message(STATUS "rbcflow: MPI not found (Debian: libopenmpi-dev openmpi-bin): building for one rank")
   endif()
+endif()
+
+# The HDF5 that io/ and everything reading its files link: one per process.
+add_library(rbcflow_hdf5 INTERFACE)
+if(RBCFLOW_WITH_PARALLEL_HDF5)
+  target_link_libraries(rbcflow_hdf5 INTERFACE PkgConfig::HDF5_OPENMPI MPI::MPI_CXX)
+else()
+  target_link_libraries(rbcflow_hdf5 INTERFACE HDF5::HDF5)
 endif()
 
 find_package(toml11 QUIET)

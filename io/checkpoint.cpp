@@ -43,32 +43,77 @@ void CheckpointWriter::put(const std::string& name, long long value) { add(name,
 void CheckpointWriter::put(const std::string& name, double value) { add(name, value); }
 void CheckpointWriter::put(const std::string& name, const std::string& value) { add(name, value); }
 
+void CheckpointWriter::write_items(std::int64_t file, const Ranks* ranks) const {
+  const hid_t f = static_cast<hid_t>(file);
+  h5::write_attribute(f, "format", std::string(kFormat));
+  h5::write_attribute(f, "format_version", kFormatVersion);
+  h5::write_attribute(f, "case_fingerprint", fingerprint_);
+  for (const auto& [name, item] : items_) {
+    h5::create_parents(f, name);
+    std::visit(
+        [&, &n = name](const auto& v) {
+          using T = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<T, Eigen::MatrixXd> || std::is_same_v<T, Eigen::MatrixXi>) {
+            h5::RowBlock rows;
+            if (ranks) {
+              const auto [begin, end] = ranks->rows(n, v.rows());
+              rows = {begin, end};
+            }
+            if constexpr (std::is_same_v<T, Eigen::MatrixXd>) {
+              h5::write_matrix(f, n, v, false, rows);
+            } else {
+              h5::write_matrix(f, n, v, rows);
+            }
+          } else {
+            bool mine = true;  // one row: written by the rank that writes row 0
+            if (ranks) {
+              const auto [begin, end] = ranks->rows(n, 1);
+              mine = begin == 0 && end != 0;
+            }
+            h5::write_scalar(f, n, v, mine);
+          }
+        },
+        item);
+  }
+}
+
 void CheckpointWriter::write(const fs::path& file) const {
   const h5::QuietErrors quiet;
   try {
     write_atomically(file, [&](const fs::path& tmp) {
       {
         const h5::Id f = h5::create_file(tmp);
-        h5::write_attribute(f.get(), "format", std::string(kFormat));
-        h5::write_attribute(f.get(), "format_version", kFormatVersion);
-        h5::write_attribute(f.get(), "case_fingerprint", fingerprint_);
-        for (const auto& [name, item] : items_) {
-          h5::create_parents(f.get(), name);
-          std::visit(
-              [&, &n = name](const auto& v) {
-                using T = std::decay_t<decltype(v)>;
-                if constexpr (std::is_same_v<T, Eigen::MatrixXd> || std::is_same_v<T, Eigen::MatrixXi>) {
-                  h5::write_matrix(f.get(), n, v);
-                } else {
-                  h5::write_scalar(f.get(), n, v);
-                }
-              },
-              item);
-        }
+        write_items(f.get(), nullptr);
       }  // closed: everything is in the file
       sync_file(tmp);
     });
   } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
+  }
+}
+
+bool CheckpointWriter::shared_by_ranks() { return h5::parallel_io(); }
+
+void CheckpointWriter::write(const fs::path& file, const Ranks& ranks) const {
+  const h5::QuietErrors quiet;
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  std::string name = ".";
+  name.append(file.filename().string()).append(".tmp.").append(ranks.tag);
+  const fs::path tmp = dir / name;
+  try {
+    {
+      const h5::Id f = h5::create_file(tmp, ranks.mpi_handle);
+      write_items(f.get(), &ranks);
+    }  // closed by every rank: everything is in the file
+    if (ranks.rank == 0) {
+      sync_file(tmp);
+      fs::rename(tmp, file);
+    }
+  } catch (const std::exception& e) {
+    if (ranks.rank == 0) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+    }
     throw std::runtime_error("cannot write the checkpoint " + file.string() + ": " + e.what());
   }
 }

@@ -7,10 +7,13 @@
 // The file carries the case fingerprint (case_fingerprint in io/case.h); a checkpoint of
 // another case is rejected with a clear message.
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -48,9 +51,26 @@ class CheckpointWriter {
   // leaves an earlier file there untouched) when it cannot.
   void write(const std::filesystem::path& file) const;
 
+  // The ranks of a run writing one checkpoint together (parallel HDF5: io/hdf5_file.h). Each
+  // holds every item; `rows` says which rows of an item (its name and row count) this rank
+  // writes, and the ranks' rows must cover every item once. `tag` names the temporary file,
+  // the same on every rank. Rank 0 makes the finished file the checkpoint.
+  struct Ranks {
+    int mpi_handle = -1;
+    int rank = 0;
+    std::string tag;
+    std::function<std::pair<long long, long long>(const std::string& name, long long rows)> rows;
+  };
+  // The same written by the ranks together; every rank calls it with the same file. Only in
+  // a build with parallel HDF5: shared_by_ranks().
+  void write(const std::filesystem::path& file, const Ranks& ranks) const;
+  static bool shared_by_ranks();
+
  private:
   using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
   void add(const std::string& name, Item item);
+  // Every item into the open file `f`; with `ranks`, each of this rank's rows.
+  void write_items(std::int64_t f, const Ranks* ranks) const;  // f: the file's hid_t
   std::string fingerprint_;
   std::map<std::string, Item> items_;
 };

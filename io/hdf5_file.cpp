@@ -1,6 +1,11 @@
 #include "io/hdf5_file.h"
 
+#include <algorithm>
 #include <stdexcept>
+
+#ifdef RBCFLOW_HAVE_PARALLEL_HDF5
+#include <mpi.h>
+#endif
 
 namespace rbcflow::h5 {
 namespace {
@@ -20,9 +25,31 @@ Id dataspace(const std::vector<hsize_t>& dims) {
   return Id(checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"), H5Sclose);
 }
 
+// Whether `loc` is in a file shared by ranks (create_file with an MPI communicator).
+bool shared_file(hid_t loc) {
+#ifdef RBCFLOW_HAVE_PARALLEL_HDF5
+  const Id file(checked(H5Iget_file_id(loc), "no file"), H5Fclose);
+  const Id access(checked(H5Fget_access_plist(file.get()), "no access list"), H5Pclose);
+  return H5Pget_driver(access.get()) == H5FD_MPIO;
+#else
+  (void)loc;
+  return false;
+#endif
+}
+
+// A shared file's data is written collectively: every rank calls H5Dwrite, selecting what it
+// gives (possibly nothing).
+Id collective_transfer() {
+  Id transfer(checked(H5Pcreate(H5P_DATASET_XFER), "property list"), H5Pclose);
+#ifdef RBCFLOW_HAVE_PARALLEL_HDF5
+  check(H5Pset_dxpl_mpio(transfer.get(), H5FD_MPIO_COLLECTIVE), "collective transfer");
+#endif
+  return transfer;
+}
+
 template <typename T>
 void write_rows(hid_t loc, const std::string& name, const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& m,
-                hid_t file_type, hid_t memory_type, bool one_column_as_vector) {
+                hid_t file_type, hid_t memory_type, bool one_column_as_vector, RowBlock block) {
   const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
   std::vector<hsize_t> dims{static_cast<hsize_t>(m.rows())};
   if (!(one_column_as_vector && m.cols() == 1)) dims.push_back(static_cast<hsize_t>(m.cols()));
@@ -30,9 +57,48 @@ void write_rows(hid_t loc, const std::string& name, const Eigen::Matrix<T, Eigen
   const Id set(checked(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                      "cannot create dataset " + name),
                H5Dclose);
-  if (m.size() > 0) {
+  if (m.size() == 0) return;
+  if (!shared_file(loc)) {
     check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), "cannot write " + name);
+    return;
   }
+  const long long n = m.rows();
+  const long long begin = std::clamp(block.begin, 0LL, n);
+  const long long end = block.end < 0 ? n : std::clamp(block.end, begin, n);
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = static_cast<hsize_t>(begin);
+  count[0] = static_cast<hsize_t>(end - begin);
+  const Id file_space(checked(H5Dget_space(set.get()), "no dataspace of " + name), H5Sclose);
+  std::vector<hsize_t> memory_dims = count;
+  memory_dims[0] = std::max<hsize_t>(count[0], 1);
+  const Id memory_space = dataspace(memory_dims);
+  if (count[0] > 0) {
+    check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+          "cannot select rows of " + name);
+  } else {
+    H5Sselect_none(file_space.get());
+    H5Sselect_none(memory_space.get());
+  }
+  const Id transfer = collective_transfer();
+  check(H5Dwrite(set.get(), memory_type, memory_space.get(), file_space.get(), transfer.get(),
+                 rows.data() + begin * m.cols()),
+        "cannot write " + name);
+}
+
+// A scalar dataset's value, written by the ranks that hold it `mine` in a shared file.
+void write_value(hid_t set, hid_t memory_type, const void* value, bool mine, const std::string& name) {
+  if (!shared_file(set)) {
+    check(H5Dwrite(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value), "cannot write " + name);
+    return;
+  }
+  const Id file_space(checked(H5Dget_space(set), "no dataspace of " + name), H5Sclose);
+  const Id memory_space(checked(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  if (!mine) {
+    H5Sselect_none(file_space.get());
+    H5Sselect_none(memory_space.get());
+  }
+  const Id transfer = collective_transfer();
+  check(H5Dwrite(set, memory_type, memory_space.get(), file_space.get(), transfer.get(), value), "cannot write " + name);
 }
 
 template <typename T>
@@ -88,6 +154,27 @@ QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
 Id create_file(const std::filesystem::path& path) {
   return Id(checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create " + path.string()),
             H5Fclose);
+}
+
+bool parallel_io() {
+#ifdef RBCFLOW_HAVE_PARALLEL_HDF5
+  return true;
+#else
+  return false;
+#endif
+}
+
+Id create_file(const std::filesystem::path& path, int mpi_handle) {
+#ifdef RBCFLOW_HAVE_PARALLEL_HDF5
+  const Id access(checked(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
+  check(H5Pset_fapl_mpio(access.get(), MPI_Comm_f2c(mpi_handle), MPI_INFO_NULL), "MPI-IO file access");
+  return Id(checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "cannot create " + path.string()),
+            H5Fclose);
+#else
+  (void)path;
+  (void)mpi_handle;
+  throw std::logic_error("HDF5: this build has no parallel HDF5: no file can be shared by ranks");
+#endif
 }
 
 Id open_file(const std::filesystem::path& path, bool writable) {
@@ -152,12 +239,13 @@ void soft_link(hid_t loc, const std::string& name, const std::string& target_pat
         "cannot link " + name + " to " + target_path);
 }
 
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector) {
-  write_rows<double>(loc, name, m, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, one_column_as_vector);
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector,
+                  RowBlock rows) {
+  write_rows<double>(loc, name, m, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, one_column_as_vector, rows);
 }
 
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m) {
-  write_rows<int>(loc, name, m, H5T_STD_I32LE, H5T_NATIVE_INT, false);
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m, RowBlock rows) {
+  write_rows<int>(loc, name, m, H5T_STD_I32LE, H5T_NATIVE_INT, false, rows);
 }
 
 Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name) {
@@ -204,22 +292,22 @@ herr_t collect_dataset(hid_t, const char* name, const H5O_info_t* info, void* ou
 
 }  // namespace
 
-void write_scalar(hid_t loc, const std::string& name, double value) {
+void write_scalar(hid_t loc, const std::string& name, double value, bool mine) {
   const Id set = scalar_dataset(loc, name, H5T_IEEE_F64LE);
-  check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "cannot write " + name);
+  write_value(set.get(), H5T_NATIVE_DOUBLE, &value, mine, name);
 }
 
-void write_scalar(hid_t loc, const std::string& name, long long value) {
+void write_scalar(hid_t loc, const std::string& name, long long value, bool mine) {
   const Id set = scalar_dataset(loc, name, H5T_STD_I64LE);
-  check(H5Dwrite(set.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "cannot write " + name);
+  write_value(set.get(), H5T_NATIVE_LLONG, &value, mine, name);
 }
 
-void write_scalar(hid_t loc, const std::string& name, const std::string& value) {
+void write_scalar(hid_t loc, const std::string& name, const std::string& value, bool mine) {
   const Id type = string_type(value.size());
   const Id set = scalar_dataset(loc, name, type.get());
   std::string padded = value;
   padded.resize(std::max<std::size_t>(value.size(), 1), '\0');
-  check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()), "cannot write " + name);
+  write_value(set.get(), type.get(), padded.data(), mine, name);
 }
 
 double read_real(hid_t loc, const std::string& name) {

@@ -43,6 +43,22 @@ class QuietErrors {
 
 Id create_file(const std::filesystem::path& path);  // truncates
 Id open_file(const std::filesystem::path& path, bool writable);
+
+// A file created by the ranks of an MPI communicator together (`mpi_handle`, its Fortran
+// handle: Communicator::mpi_handle() of libsolver/parallel), through HDF5's MPI-IO driver, in
+// a build with parallel HDF5 (parallel_io(); else std::logic_error). Every rank then makes the
+// same calls in the same order (groups, datasets and attributes are created collectively);
+// the data of each dataset is written collectively, each rank giving its `rows` of it.
+bool parallel_io();
+Id create_file(const std::filesystem::path& path, int mpi_handle);
+
+// The rows [begin, end) of a dataset that this rank writes into a file shared by ranks; the
+// default, every row (the only choice in a file of one process).
+struct RowBlock {
+  long long begin = 0;
+  long long end = -1;  // -1: to the last row
+  static RowBlock none() { return {0, 0}; }
+};
 void flush(hid_t file);
 
 // Groups track the creation order of their links, and children() lists them in that order.
@@ -55,17 +71,19 @@ void soft_link(hid_t loc, const std::string& name, const std::string& target_pat
 
 // Matrices are stored row-major (rows x cols); a matrix with one column is stored 1-D when
 // `one_column_as_vector` (XDMF scalars). read_* accepts either.
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector = false);
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m);
+// `rows`: what this rank writes of `m` (a file shared by ranks; each holds all of m).
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, bool one_column_as_vector = false,
+                  RowBlock rows = {});
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m, RowBlock rows = {});
 Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name);
 Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name);
 // Dimensions of a dataset.
 std::vector<hsize_t> shape(hid_t loc, const std::string& name);
 
-// Scalar datasets.
-void write_scalar(hid_t loc, const std::string& name, double value);
-void write_scalar(hid_t loc, const std::string& name, long long value);
-void write_scalar(hid_t loc, const std::string& name, const std::string& value);
+// Scalar datasets; `mine`: whether this rank writes the value (a file shared by ranks).
+void write_scalar(hid_t loc, const std::string& name, double value, bool mine = true);
+void write_scalar(hid_t loc, const std::string& name, long long value, bool mine = true);
+void write_scalar(hid_t loc, const std::string& name, const std::string& value, bool mine = true);
 double read_real(hid_t loc, const std::string& name);
 long long read_integer(hid_t loc, const std::string& name);
 std::string read_text(hid_t loc, const std::string& name);

@@ -1,9 +1,13 @@
 #include "scenario/checkpoint.h"
 
+#include <unistd.h>
+
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "io/output_dir.h"
+#include "libsolver/parallel/ownership.h"
 
 namespace rbcflow {
 namespace {
@@ -38,15 +42,41 @@ class CheckpointIn : public StateArchive {
   const Checkpoint& k_;
 };
 
+// Which rows of a checkpoint item this rank writes: the items of one cell ("cells/K/...") are
+// its owner's, the cells' items with a row per cell or per cell node are split by the cells'
+// owners, and any other item's rows in contiguous blocks over the ranks (a scalar: rank 0).
+std::pair<long long, long long> rows_to_write(const std::string& name, long long rows, long cells,
+                                              const Communicator& ranks) {
+  const OwnedRange owned = owned_block(static_cast<int>(cells), ranks);
+  if (name.rfind("cells/", 0) == 0 && cells > 0) {
+    const std::string rest = name.substr(6);
+    const std::size_t slash = rest.find('/');
+    if (slash != std::string::npos && slash > 0 && rest.find_first_not_of("0123456789") == slash) {
+      return owned.contains(std::stoi(rest.substr(0, slash))) ? std::pair{0LL, rows} : std::pair{0LL, 0LL};
+    }
+    if (rows % cells == 0) return {owned.begin * (rows / cells), owned.end * (rows / cells)};
+  }
+  const OwnedRange block = owned_block(static_cast<int>(rows), ranks);
+  return {block.begin, block.end};
+}
+
 }  // namespace
 
-void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
+void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file,
+                      const Communicator& ranks) {
   CheckpointWriter w(case_fingerprint(c));
   w.put("state_version", static_cast<long long>(kCheckpointStateVersion));
   w.put("case", case_toml(c));
   CheckpointOut out(w);
   stepper.save(out);
-  w.write(file);
+  if (ranks.size() == 1 || !CheckpointWriter::shared_by_ranks()) {
+    if (ranks.root()) w.write(file);
+    return;
+  }
+  const long cells = static_cast<long>(stepper.cells().size());
+  const long tag = ranks.sum(ranks.root() ? static_cast<long>(::getpid()) : 0L);  // rank 0's process id
+  w.write(file, {ranks.mpi_handle(), ranks.rank(), std::to_string(tag),
+                 [&](const std::string& name, long long rows) { return rows_to_write(name, rows, cells, ranks); }});
 }
 
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {

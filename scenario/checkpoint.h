@@ -8,6 +8,7 @@
 
 #include "io/case.h"
 #include "io/checkpoint.h"
+#include "libsolver/parallel/communicator.h"
 #include "libsolver/stepper/cell_stepper.h"
 
 namespace rbcflow {
@@ -15,8 +16,11 @@ namespace rbcflow {
 inline constexpr long kCheckpointStateVersion = 2;
 
 // Written atomically (io/checkpoint.h); throws std::runtime_error naming the file when it
-// cannot be.
-void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+// cannot be. Every rank of a run calls it: with parallel HDF5 the ranks write the file
+// together (each its own cells' items and rows, and its block of the rows of the rest), else
+// rank 0 writes it alone.
+void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file,
+                      const Communicator& ranks = {});
 // Reads a checkpoint of this case into the stepper; throws CheckpointError (exit 2) naming the
 // file when it does not fit the case or has a format this build does not read.
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);

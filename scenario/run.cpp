@@ -256,7 +256,7 @@ void Run::step() {
     }
     if (c.output.checkpoint_every > 0 && stepper.steps() % c.output.checkpoint_every == 0) {
       r.last_checkpoint = checkpoint_path(c.output.dir, stepper.steps());
-      if (r.output) write_checkpoint(stepper, c, *r.last_checkpoint);
+      write_checkpoint(stepper, c, *r.last_checkpoint, r.ranks);  // every rank: written together
     }
     r.progress->update(stepper.steps(), stepper.time(), seconds);
   });
@@ -273,22 +273,24 @@ void Run::finish() {
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
       const FlowSolution s = stepper.solve();  // on every rank: its products are shared
-      if (!r.output) return;
-      r.output->frame(stepper, s);
-      if (c.output.render) r.output->render(stepper, s);
+      if (r.output) {
+        r.output->frame(stepper, s);
+        if (c.output.render) r.output->render(stepper, s);
+      }
     }
-    if (!r.output) return;
     const int every = c.output.checkpoint_every;
     if (every > 0 && n % every != 0) {
       r.last_checkpoint = checkpoint_path(c.output.dir, n);
-      write_checkpoint(stepper, c, *r.last_checkpoint);
+      write_checkpoint(stepper, c, *r.last_checkpoint, r.ranks);  // every rank: written together
     }
-    if (c.output.render) plot_diagnostics(c.output.dir / "diagnostics.csv", c.output.dir / "diagnostics.png");
+    if (r.output && c.output.render) {
+      plot_diagnostics(c.output.dir / "diagnostics.csv", c.output.dir / "diagnostics.png");
+    }
   });
 }
 
 void Run::checkpoint(const fs::path& file) {
-  if (state_->ranks.root()) write_checkpoint(*state_->stepper, state_->request.c, file);
+  write_checkpoint(*state_->stepper, state_->request.c, file, state_->ranks);
   state_->last_checkpoint = file;
 }
 

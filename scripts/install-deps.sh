@@ -10,7 +10,7 @@ packages=(
   xvfb xauth
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib
-  libopenmpi-dev openmpi-bin libfftw3-mpi-dev
+  libopenmpi-dev openmpi-bin libfftw3-mpi-dev libhdf5-openmpi-dev
 
 )
 

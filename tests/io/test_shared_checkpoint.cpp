@@ -1,0 +1,124 @@
+// A checkpoint written by the ranks together (io/checkpoint.h, CheckpointWriter::write with
+// Ranks; parallel HDF5): run under mpirun -np 2 and 3 (tests/io/CMakeLists.txt). Each rank
+// spoils the rows it does not write, so the file equals the intended whole only if every rank
+// wrote exactly its own rows; a scalar is rank 0's. A checkpoint that cannot be written fails on
+// every rank and leaves nothing behind.
+#include <gtest/gtest.h>
+#include <mpi.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "io/checkpoint.h"
+
+using namespace rbcflow;
+namespace fs = std::filesystem;
+
+namespace {
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// Contiguous blocks of n rows, the first n % p ranks one row more.
+std::pair<long long, long long> block(long long n, int r, int p) {
+  const long long base = n / p, extra = n % p;
+  const long long begin = r * base + std::min<long long>(r, extra);
+  return {begin, begin + base + (r < extra ? 1 : 0)};
+}
+
+// The same directory on every rank (rank 0's process id).
+fs::path shared_dir() {
+  long id = rank() == 0 ? static_cast<long>(::getpid()) : 0L;
+  MPI_Bcast(&id, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  return fs::temp_directory_path() / ("rbcflow_shared_checkpoint_" + std::to_string(id));
+}
+
+CheckpointWriter::Ranks world_ranks() {
+  return {static_cast<int>(MPI_Comm_c2f(MPI_COMM_WORLD)), rank(), "test",
+          [](const std::string&, long long rows) { return block(rows, rank(), ranks()); }};
+}
+
+}  // namespace
+
+TEST(SharedCheckpoint, EachRankWritesItsRows) {
+  ASSERT_TRUE(CheckpointWriter::shared_by_ranks());
+  const fs::path dir = shared_dir();
+  if (rank() == 0) fs::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const fs::path file = dir / "step.h5";
+
+  Eigen::MatrixXd whole(11, 3);
+  Eigen::MatrixXi labels(7, 2);
+  for (int i = 0; i < whole.rows(); ++i)
+    for (int j = 0; j < 3; ++j) whole(i, j) = std::sin(1.0 + i + 0.3 * j);
+  for (int i = 0; i < labels.rows(); ++i) labels.row(i) << i, 10 * i;
+  Eigen::MatrixXd held = whole;  // what this rank holds: wrong outside its rows
+  Eigen::MatrixXi held_labels = labels;
+  const auto [b, e] = block(whole.rows(), rank(), ranks());
+  for (int i = 0; i < held.rows(); ++i)
+    if (i < b || i >= e) held.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  const auto [lb, le] = block(labels.rows(), rank(), ranks());
+  for (int i = 0; i < held_labels.rows(); ++i)
+    if (i < lb || i >= le) held_labels.row(i).setConstant(-1);
+
+  CheckpointWriter w("fingerprint");
+  w.put("cells/velocity", held);
+  w.put("wall/labels", held_labels);
+  w.put("steps", rank() == 0 ? 42LL : -1LL);
+  w.put("time", rank() == 0 ? 0.25 : -1.0);
+  w.put("case", std::string("title = \"x\""));
+  w.write(file, world_ranks());
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  const Checkpoint k = Checkpoint::read(file, "fingerprint");
+  EXPECT_EQ(k.matrix("cells/velocity"), whole);
+  EXPECT_EQ(k.int_matrix("wall/labels"), labels);
+  EXPECT_EQ(k.integer("steps"), 42);
+  EXPECT_EQ(k.real("time"), 0.25);
+  EXPECT_EQ(k.text("case"), "title = \"x\"");
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "step.h5");  // no temporary left
+  }
+  EXPECT_EQ(entries, 1);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank() == 0) fs::remove_all(dir);
+}
+
+TEST(SharedCheckpoint, AFailedWriteFailsOnEveryRank) {
+  const fs::path missing = shared_dir() / "no_such_directory" / "step.h5";
+  CheckpointWriter w("fingerprint");
+  w.put("steps", 1LL);
+  try {
+    w.write(missing, world_ranks());
+    ADD_FAILURE() << "writing into a missing directory did not fail on rank " << rank();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write the checkpoint " + missing.string()), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(missing));
+}
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int failed = RUN_ALL_TESTS() != 0 ? 1 : 0;
+  int any = 0;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return any;
+}
