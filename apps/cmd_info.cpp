@@ -50,7 +50,7 @@ int run_info(Args& args) {
   std::printf("  VTK      %s\n", vtkVersion::GetVTKVersion());
   std::printf("  CGAL     %s\n", CGAL_VERSION_STR);
   std::printf("  HDF5     %u.%u.%u%s\n", h5maj, h5min, h5rel,
-              CheckpointWriter::shared_by_ranks() ? " (parallel: the ranks write each checkpoint together)" : "");
+              CheckpointWriter::shared_by_ranks() ? " (parallel: the ranks write rbcflow.h5 and the checkpoints together)" : "");
   std::printf("  toml11   %d.%d.%d\n", TOML11_VERSION_MAJOR, TOML11_VERSION_MINOR, TOML11_VERSION_PATCH);
   std::printf("  Boost    %d.%d.%d\n", BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000, BOOST_VERSION % 100);
   std::printf("  OpenMP   %d (spec date)\n", _OPENMP);

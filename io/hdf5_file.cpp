@@ -164,17 +164,33 @@ bool parallel_io() {
 #endif
 }
 
-Id create_file(const std::filesystem::path& path, int mpi_handle) {
+namespace {
+
+// File access through MPI-IO by the ranks of a communicator.
+Id shared_access(int mpi_handle) {
 #ifdef RBCFLOW_HAVE_PARALLEL_HDF5
-  const Id access(checked(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
+  Id access(checked(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
   check(H5Pset_fapl_mpio(access.get(), MPI_Comm_f2c(mpi_handle), MPI_INFO_NULL), "MPI-IO file access");
-  return Id(checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "cannot create " + path.string()),
-            H5Fclose);
+  return access;
 #else
-  (void)path;
   (void)mpi_handle;
   throw std::logic_error("HDF5: this build has no parallel HDF5: no file can be shared by ranks");
 #endif
+}
+
+}  // namespace
+
+Id create_file(const std::filesystem::path& path, int mpi_handle) {
+  const Id access = shared_access(mpi_handle);
+  return Id(checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "cannot create " + path.string()),
+            H5Fclose);
+}
+
+Id open_file(const std::filesystem::path& path, bool writable, int mpi_handle) {
+  const Id access = shared_access(mpi_handle);
+  return Id(checked(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, access.get()),
+                    "cannot open " + path.string()),
+            H5Fclose);
 }
 
 Id open_file(const std::filesystem::path& path, bool writable) {

@@ -51,6 +51,7 @@ Id open_file(const std::filesystem::path& path, bool writable);
 // the data of each dataset is written collectively, each rank giving its `rows` of it.
 bool parallel_io();
 Id create_file(const std::filesystem::path& path, int mpi_handle);
+Id open_file(const std::filesystem::path& path, bool writable, int mpi_handle);
 
 // The rows [begin, end) of a dataset that this rank writes into a file shared by ranks; the
 // default, every row (the only choice in a file of one process).

@@ -42,6 +42,22 @@ std::string data_item(const std::string& h5_name, const std::string& dataset, lo
   return s;
 }
 
+// The series' HDF5 file, of one process or shared by ranks.
+h5::Id create(const fs::path& path, const std::optional<XdmfWriter::Ranks>& ranks) {
+  return ranks ? h5::create_file(path, ranks->mpi_handle) : h5::create_file(path);
+}
+
+h5::Id open(const fs::path& path, const std::optional<XdmfWriter::Ranks>& ranks) {
+  return ranks ? h5::open_file(path, true, ranks->mpi_handle) : h5::open_file(path, true);
+}
+
+// This rank's rows of a surface's array (all of them in a file of one process).
+h5::RowBlock rows_of(const std::optional<XdmfWriter::Ranks>& ranks, const std::string& surface, long long rows) {
+  if (!ranks) return {};
+  const auto [begin, end] = ranks->rows(surface, rows);
+  return {begin, end};
+}
+
 }  // namespace
 
 std::string step_label(long step) {
@@ -50,22 +66,25 @@ std::string step_label(long step) {
   return buf;
 }
 
-XdmfWriter::XdmfWriter(const fs::path& dir, std::optional<long> resume_step, const std::string& stem)
-    : h5_path_(dir / (stem + ".h5")), xdmf_path_(dir / (stem + ".xdmf")) {
+XdmfWriter::XdmfWriter(const fs::path& dir, std::optional<long> resume_step, const std::string& stem,
+                       std::optional<Ranks> ranks)
+    : h5_path_(dir / (stem + ".h5")), xdmf_path_(dir / (stem + ".xdmf")), ranks_(std::move(ranks)) {
   const h5::QuietErrors quiet;
   if (resume_step && fs::exists(h5_path_)) {
     resume(*resume_step);
   } else {
-    const h5::Id file = h5::create_file(h5_path_);
+    const h5::Id file = create(h5_path_, ranks_);
     h5::write_attribute(file.get(), "format", std::string("rbcflow XDMF series"));
     h5::create_group(file.get(), "frames");
   }
   write_xml();
 }
 
+bool XdmfWriter::shared_by_ranks() { return h5::parallel_io(); }
+
 void XdmfWriter::resume(long step) {
   try {
-    const h5::Id file = h5::open_file(h5_path_, true);
+    const h5::Id file = open(h5_path_, ranks_);
     const h5::Id all = h5::open_group(file.get(), "frames");
     for (const std::string& label : h5::children(all.get())) {
       const h5::Id frame = h5::open_group(all.get(), label);
@@ -111,7 +130,7 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
   const std::string label = step_label(step);
   FrameRecord rec{step, time, {}};
   try {
-    const h5::Id file = h5::open_file(h5_path_, true);
+    const h5::Id file = open(h5_path_, ranks_);
     const h5::Id all = h5::open_group(file.get(), "frames");
     const h5::Id frame = h5::create_group(all.get(), label);
     h5::write_attribute(frame.get(), "step", static_cast<long long>(step));
@@ -130,17 +149,19 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
         next.points_path = it->second.points_path;
         h5::soft_link(g.get(), "points", next.points_path);
       } else {
-        h5::write_matrix(g.get(), "points", Eigen::MatrixXd(s.mesh.points));
+        h5::write_matrix(g.get(), "points", Eigen::MatrixXd(s.mesh.points), false,
+                         rows_of(ranks_, s.name, s.mesh.num_points()));
       }
       if (same_triangles) {
         next.triangles_path = it->second.triangles_path;
         h5::soft_link(g.get(), "triangles", next.triangles_path);
       } else {
-        h5::write_matrix(g.get(), "triangles", Eigen::MatrixXi(s.mesh.triangles));
+        h5::write_matrix(g.get(), "triangles", Eigen::MatrixXi(s.mesh.triangles),
+                         rows_of(ranks_, s.name, s.mesh.num_triangles()));
       }
       SurfaceRecord sr{s.name, s.mesh.num_points(), s.mesh.num_triangles(), {}};
       for (const SurfaceField& f : s.fields) {
-        h5::write_matrix(g.get(), f.name, f.values, true);
+        h5::write_matrix(g.get(), f.name, f.values, true, rows_of(ranks_, s.name, s.mesh.num_points()));
         sr.fields.push_back({f.name, static_cast<long long>(f.values.cols())});
       }
       last_[s.name] = std::move(next);
@@ -156,6 +177,7 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
 }
 
 void XdmfWriter::write_xml() const {
+  if (ranks_ && ranks_->rank != 0) return;
   const std::string h5 = h5_path_.filename().string();
   std::string x = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
   x.append("<Xdmf Version=\"3.0\">\n  <Domain>\n");

@@ -14,9 +14,11 @@
 // frame it is flushed and closed, then the XML, which lists only complete frames, is
 // replaced atomically.
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/surface.h"
@@ -25,13 +27,25 @@ namespace rbcflow {
 
 class XdmfWriter {
  public:
+  // The ranks of a run writing the series together (parallel HDF5, io/hdf5_file.h): every rank
+  // makes the same writer and the same write_frame calls with the same surfaces; `rows` says
+  // which rows of a surface's arrays (its name and row count: points or triangles) this rank
+  // writes. Rank 0 writes the XML.
+  struct Ranks {
+    int mpi_handle = -1;
+    int rank = 0;
+    std::function<std::pair<long long, long long>(const std::string& surface, long long rows)> rows;
+  };
+
   // Starts DIR/STEM.h5 and DIR/STEM.xdmf afresh; or, with `resume_step`, continues them after
   // that step (later frames, left by a run that went past its last checkpoint, are dropped).
   explicit XdmfWriter(const std::filesystem::path& dir, std::optional<long> resume_step = std::nullopt,
-                      const std::string& stem = "rbcflow");
+                      const std::string& stem = "rbcflow", std::optional<Ranks> ranks = std::nullopt);
 
   // Writes one frame; steps must increase.
   void write_frame(long step, double time, const std::vector<Surface>& surfaces);
+  // Whether this build can write a series from several ranks (parallel HDF5).
+  static bool shared_by_ranks();
 
   int frames() const { return static_cast<int>(frames_.size()); }
   const std::filesystem::path& xdmf_path() const { return xdmf_path_; }
@@ -64,6 +78,7 @@ class XdmfWriter {
   std::filesystem::path h5_path_, xdmf_path_;
   std::vector<FrameRecord> frames_;
   std::map<std::string, LastMesh> last_;
+  std::optional<Ranks> ranks_;
 };
 
 // "00000100": the zero-padded step used in HDF5 groups and file names.

@@ -8,6 +8,7 @@
 
 #include "io/output_dir.h"
 #include "libsolver/parallel/ownership.h"
+#include "scenario/shared_output.h"
 
 namespace rbcflow {
 namespace {
@@ -43,21 +44,18 @@ class CheckpointIn : public StateArchive {
 };
 
 // Which rows of a checkpoint item this rank writes: the items of one cell ("cells/K/...") are
-// its owner's, the cells' items with a row per cell or per cell node are split by the cells'
-// owners, and any other item's rows in contiguous blocks over the ranks (a scalar: rank 0).
-std::pair<long long, long long> rows_to_write(const std::string& name, long long rows, long cells,
-                                              const Communicator& ranks) {
-  const OwnedRange owned = owned_block(static_cast<int>(cells), ranks);
+// its owner's, any other as rows_to_write says (shared_output.h).
+std::pair<long long, long long> item_rows(const std::string& name, long long rows, long cells,
+                                          const Communicator& ranks) {
   if (name.rfind("cells/", 0) == 0 && cells > 0) {
     const std::string rest = name.substr(6);
     const std::size_t slash = rest.find('/');
     if (slash != std::string::npos && slash > 0 && rest.find_first_not_of("0123456789") == slash) {
-      return owned.contains(std::stoi(rest.substr(0, slash))) ? std::pair{0LL, rows} : std::pair{0LL, 0LL};
+      const bool mine = owned_block(static_cast<int>(cells), ranks).contains(std::stoi(rest.substr(0, slash)));
+      return mine ? std::pair{0LL, rows} : std::pair{0LL, 0LL};
     }
-    if (rows % cells == 0) return {owned.begin * (rows / cells), owned.end * (rows / cells)};
   }
-  const OwnedRange block = owned_block(static_cast<int>(rows), ranks);
-  return {block.begin, block.end};
+  return rows_to_write(rows, cells, ranks);
 }
 
 }  // namespace
@@ -76,7 +74,7 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
   const long cells = static_cast<long>(stepper.cells().size());
   const long tag = ranks.sum(ranks.root() ? static_cast<long>(::getpid()) : 0L);  // rank 0's process id
   w.write(file, {ranks.mpi_handle(), ranks.rank(), std::to_string(tag),
-                 [&](const std::string& name, long long rows) { return rows_to_write(name, rows, cells, ranks); }});
+                 [&](const std::string& name, long long rows) { return item_rows(name, rows, cells, ranks); }});
 }
 
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {

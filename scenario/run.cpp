@@ -19,6 +19,7 @@
 #include "libsolver/parallel/communicator.h"
 #include "scenario/branch_monitor.h"
 #include "scenario/checkpoint.h"
+#include "scenario/shared_output.h"
 #include "scenario/derived.h"
 #include "scenario/physical_units.h"
 #include "scenario/run_output.h"
@@ -87,7 +88,9 @@ std::vector<long> passed_at(const fs::path& path, long step, std::size_t branche
 
 class RunOutput {
  public:
-  RunOutput(const Case& c, const Scenario& s, const CellStepper& stepper, std::optional<long> resume)
+  // `frame_ranks`: the ranks that write rbcflow.h5 together (shared_output.h), if they do.
+  RunOutput(const Case& c, const Scenario& s, const CellStepper& stepper, std::optional<long> resume,
+            const std::optional<XdmfWriter::Ranks>& frame_ranks)
       : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
     if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
     if (!s.branches.empty()) {
@@ -98,7 +101,7 @@ class RunOutput {
                          : std::nullopt;
       branches_.emplace(s.branches, s.vessel->period, tube_area, cell_centroids(stepper), passed);
     }
-    if (c.output.xdmf) xdmf_.emplace(dir_, resume);
+    if (c.output.xdmf) xdmf_.emplace(dir_, resume, "rbcflow", frame_ranks);
     if (c.output.vtk) vtk_.emplace(dir_, resume);
   }
 
@@ -142,15 +145,26 @@ class RunOutput {
 
 struct Run::State {
   RunRequest request;
-  // On several ranks every rank steps the same replicated state; rank 0 alone writes and prints.
+  // On several ranks every rank steps the same replicated state; rank 0 writes and prints, and
+  // with parallel HDF5 the ranks write the frames of rbcflow.h5 and the checkpoints together.
   Communicator ranks = Communicator::world();
   Scenario scenario;
   std::unique_ptr<CellStepper> stepper;
   std::optional<long> resume;
   long first = 0, last = 0;
-  std::optional<RunOutput> output;
+  std::optional<RunOutput> output;        // rank 0
+  std::optional<XdmfWriter> other_frames;  // the other ranks' part of rbcflow.h5
   std::optional<Progress> progress;
   std::optional<fs::path> last_checkpoint;
+
+  // A frame of the output: every rank calls it (its part of a shared rbcflow.h5).
+  void frame(const CellStepper& stepper, const FlowSolution& s) {
+    if (output) {
+      output->frame(stepper, s);
+    } else if (other_frames) {
+      other_frames->write_frame(stepper.steps(), stepper.time(), frame_surfaces(stepper, s));
+    }
+  }
 
   // Runs `f`; an exception leaves with the last good checkpoint named.
   template <typename F>
@@ -198,19 +212,26 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   }
 
   r.progress.emplace(quiet || !root, r.first, r.last);
-  if (!root) return;
-  // Only now that the case has been prepared: a case that fails leaves the earlier run as it was.
-  if (r.request.overwrite && !(r.resume && restarts_in_place(r.request.restart, c.output.dir))) {
-    clear_run(c.output.dir);
-  }
-  prepare_output_dir(c.output.dir);
-  if (r.resume) {
-    if (const auto run = carry_tables_from_checkpoint_run(r.request.restart, c.output.dir); run && !quiet) {
-      std::printf("restart: diagnostics and cell rows up to step %ld carried over from %s\n", *r.resume, run->c_str());
+  if (root) {
+    // Only now that the case has been prepared: a case that fails leaves the earlier run as it was.
+    if (r.request.overwrite && !(r.resume && restarts_in_place(r.request.restart, c.output.dir))) {
+      clear_run(c.output.dir);
     }
+    prepare_output_dir(c.output.dir);
+    if (r.resume) {
+      if (const auto run = carry_tables_from_checkpoint_run(r.request.restart, c.output.dir); run && !quiet) {
+        std::printf("restart: diagnostics and cell rows up to step %ld carried over from %s\n", *r.resume, run->c_str());
+      }
+    }
+    write_case_toml(c, c.output.dir / "case.toml");
   }
-  write_case_toml(c, c.output.dir / "case.toml");
-  r.output.emplace(c, r.scenario, stepper, r.resume);
+  const std::optional<XdmfWriter::Ranks> frame_ranks = frame_writers(r.ranks, static_cast<long>(stepper.cells().size()));
+  if (frame_ranks) r.ranks.sum(0L);  // the other ranks wait until rank 0 has prepared the directory
+  if (root) {
+    r.output.emplace(c, r.scenario, stepper, r.resume, frame_ranks);
+  } else if (frame_ranks && c.output.xdmf) {
+    r.other_frames.emplace(c.output.dir, r.resume, "rbcflow", frame_ranks);
+  }
 }
 
 Run::~Run() = default;
@@ -237,7 +258,7 @@ void Run::step() {
     r.ranks.check_same(s.gmres_cells, "the cells' GMRES iterations");
     r.ranks.check_same(s.gmres_wall, "the wall's GMRES iterations");
     const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
-    if (r.output && n % c.output.every == 0 && !resumed_here) r.output->frame(stepper, s);
+    if (n % c.output.every == 0 && !resumed_here) r.frame(stepper, s);
     if (r.output && c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here) {
       r.output->render(stepper, s);
     }
@@ -273,10 +294,8 @@ void Run::finish() {
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
       const FlowSolution s = stepper.solve();  // on every rank: its products are shared
-      if (r.output) {
-        r.output->frame(stepper, s);
-        if (c.output.render) r.output->render(stepper, s);
-      }
+      r.frame(stepper, s);
+      if (r.output && c.output.render) r.output->render(stepper, s);
     }
     const int every = c.output.checkpoint_every;
     if (every > 0 && n % every != 0) {

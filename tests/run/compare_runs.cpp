@@ -1,5 +1,7 @@
 // compare_runs CASE.toml DIR_A DIR_B STEP TOLERANCE [FLOOR]: exit 0 when the two output
-// directories hold the same checkpoint at STEP (every matrix within TOLERANCE, absolute) and the
+// directories hold the same checkpoint at STEP (every matrix within TOLERANCE, absolute), the
+// same frames in rbcflow.h5 where both have one (the same steps, surfaces and triangles; points
+// and fields within TOLERANCE relative to the largest entry of each) and the
 // same diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the larger
 // magnitude, or within FLOOR absolute: default 0; runs that sum in another order differ by
 // rounding in columns that are rounding errors themselves, such as max_volume_error ~ 1e-16);
@@ -9,11 +11,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "io/case.h"
 #include "io/checkpoint.h"
 #include "io/csv.h"
+#include "io/xdmf_reader.h"
 #include "io/xdmf_writer.h"
 
 using namespace rbcflow;
@@ -42,6 +47,41 @@ double field_difference(const std::string& a, const std::string& b, double floor
   if (a.empty() || b.empty()) return a.empty() && b.empty() ? 0.0 : INFINITY;
   const double x = std::stod(a), y = std::stod(b);
   return difference(x, y) <= floor ? 0.0 : relative_difference(x, y);
+}
+
+double relative_max_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  const double d = max_difference(x, y);
+  const double scale = x.size() ? x.cwiseAbs().maxCoeff() : 0.0;
+  return scale > 0 && std::isfinite(d) ? d / scale : d;
+}
+
+// The frames of the two runs' rbcflow.h5 (where both have one) agree at every step both hold
+// (a run restarted into another directory holds only the frames after its restart).
+bool same_frames(const std::string& a, const std::string& b, double tolerance) {
+  if (!std::filesystem::exists(a + "/rbcflow.h5") || !std::filesystem::exists(b + "/rbcflow.h5")) return true;
+  const std::vector<XdmfFrameTime> fa = read_xdmf_frames(a), fb = read_xdmf_frames(b);
+  std::vector<long> common;
+  for (const XdmfFrameTime& x : fa)
+    for (const XdmfFrameTime& y : fb)
+      if (x.step == y.step) common.push_back(x.step);
+  bool ok = !common.empty();
+  double worst = 0;
+  for (const long step : common) {
+    const XdmfFrame x = read_xdmf_frame(a, step), y = read_xdmf_frame(b, step);
+    ok = ok && x.time == y.time && x.surfaces.size() == y.surfaces.size();
+    for (std::size_t k = 0; ok && k < x.surfaces.size(); ++k) {
+      const Surface &p = x.surfaces[k], &q = y.surfaces[k];
+      ok = p.name == q.name && p.mesh.triangles == q.mesh.triangles && p.fields.size() == q.fields.size();
+      worst = std::max(worst, relative_max_difference(p.mesh.points, q.mesh.points));
+      for (std::size_t f = 0; ok && f < p.fields.size(); ++f) {
+        ok = p.fields[f].name == q.fields[f].name;
+        worst = std::max(worst, relative_max_difference(p.fields[f].values, q.fields[f].values));
+      }
+    }
+  }
+  std::printf("rbcflow.h5: %zu frames against %zu, %zu at the same steps: points and fields max |a - b| / max |a| = "
+              "%.3e%s\n", fa.size(), fb.size(), common.size(), worst, ok ? "" : " (times, surfaces or triangles differ)");
+  return ok && worst <= tolerance;
 }
 
 }  // namespace
@@ -75,6 +115,7 @@ int main(int argc, char** argv) {
     worst = std::max(worst, d);
   }
   if (ka.integer("steps") != kb.integer("steps") || ka.real("time") != kb.real("time")) ok = false;
+  ok = same_frames(a, b, tolerance) && ok;
 
   const CsvTable da = read_csv(a + "/diagnostics.csv"), db = read_csv(b + "/diagnostics.csv");
   if (da.rows.size() != db.rows.size() || da.columns != db.columns) {

@@ -1,8 +1,9 @@
-// A checkpoint written by the ranks together (io/checkpoint.h, CheckpointWriter::write with
-// Ranks; parallel HDF5): run under mpirun -np 2 and 3 (tests/io/CMakeLists.txt). Each rank
-// spoils the rows it does not write, so the file equals the intended whole only if every rank
-// wrote exactly its own rows; a scalar is rank 0's. A checkpoint that cannot be written fails on
-// every rank and leaves nothing behind.
+// Files written by the ranks together (parallel HDF5): a checkpoint (io/checkpoint.h,
+// CheckpointWriter::write with Ranks) and an XDMF series (io/xdmf_writer.h with Ranks), run
+// under mpirun -np 2 and 3 (tests/io/CMakeLists.txt). Each rank spoils the rows it does not
+// write, so a file equals the intended whole only if every rank wrote exactly its own rows; a
+// scalar is rank 0's. A checkpoint that cannot be written fails on every rank and leaves nothing
+// behind.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
@@ -14,6 +15,8 @@
 #include <string>
 
 #include "io/checkpoint.h"
+#include "io/xdmf_reader.h"
+#include "io/xdmf_writer.h"
 
 using namespace rbcflow;
 namespace fs = std::filesystem;
@@ -111,6 +114,56 @@ TEST(SharedCheckpoint, AFailedWriteFailsOnEveryRank) {
         << e.what();
   }
   EXPECT_FALSE(fs::exists(missing));
+}
+
+// Two frames of a surface of 9 points and 4 triangles, with a vector field: each rank spoils
+// the points, triangles and field rows it does not write. The second frame's triangles are a
+// link to the first's; the XML is rank 0's.
+TEST(SharedFrames, EachRankWritesItsRows) {
+  ASSERT_TRUE(XdmfWriter::shared_by_ranks());
+  const fs::path dir = shared_dir();
+  if (rank() == 0) fs::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  Surface whole{"cells", {}, {}};
+  whole.mesh.points.resize(9, 3);
+  whole.mesh.triangles.resize(4, 3);
+  for (int i = 0; i < 9; ++i) whole.mesh.points.row(i) << i, std::cos(i), 0.5 * i * i;
+  for (int t = 0; t < 4; ++t) whole.mesh.triangles.row(t) << 2 * t, 2 * t + 1, 2 * t + 2;
+  whole.fields = {{"velocity", whole.mesh.points * 2.0}};
+  const auto spoiled = [&](double shift) {
+    Surface s = whole;
+    s.mesh.points.array() += shift;
+    s.fields[0].values.array() += shift;
+    const auto [b, e] = block(9, rank(), ranks());
+    const auto [tb, te] = block(4, rank(), ranks());
+    for (int i = 0; i < 9; ++i) {
+      if (i >= b && i < e) continue;
+      s.mesh.points.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+      s.fields[0].values.row(i).setConstant(-7.0);
+    }
+    for (int t = 0; t < 4; ++t)
+      if (t < tb || t >= te) s.mesh.triangles.row(t).setConstant(-1);
+    return s;
+  };
+  {
+    XdmfWriter w(dir, std::nullopt, "rbcflow",
+                 XdmfWriter::Ranks{static_cast<int>(MPI_Comm_c2f(MPI_COMM_WORLD)), rank(),
+                                   [](const std::string&, long long rows) { return block(rows, rank(), ranks()); }});
+    w.write_frame(10, 0.5, {spoiled(0.0)});
+    w.write_frame(20, 1.0, {spoiled(1.0)});
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  ASSERT_EQ(read_xdmf_frames(dir).size(), 2u);
+  for (const double shift : {0.0, 1.0}) {
+    const XdmfFrame f = read_xdmf_frame(dir, shift == 0.0 ? 10 : 20);
+    ASSERT_EQ(f.surfaces.size(), 1u);
+    EXPECT_EQ(f.surfaces[0].mesh.triangles, whole.mesh.triangles);
+    EXPECT_EQ(f.surfaces[0].mesh.points, (whole.mesh.points.array() + shift).matrix());
+    EXPECT_EQ(f.surfaces[0].fields[0].values, (whole.fields[0].values.array() + shift).matrix());
+  }
+  EXPECT_TRUE(fs::exists(dir / "rbcflow.xdmf"));
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank() == 0) fs::remove_all(dir);
 }
 
 int main(int argc, char** argv) {
