@@ -1,8 +1,25 @@
 #include <algorithm>
+#include <limits>
 
 #include "cli.h"
 
 namespace rbcflow::cli {
+
+long positive_integer(const std::string& command, const std::string& option, const std::string& text, long max) {
+  std::size_t used = 0;
+  long v = -1;
+  try {
+    v = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || v < 1 || v > max) {
+    const std::string range = max == std::numeric_limits<long>::max() ? "a positive integer"
+                                                                       : "an integer from 1 to " + std::to_string(max);
+    throw UsageError("rbcflow " + command + ": " + option + " must be " + range + ", got '" + text + "'");
+  }
+  return v;
+}
 
 Args::Args(std::string command, std::vector<std::string> args)
     : command_(std::move(command)), args_(std::move(args)) {}

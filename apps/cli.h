@@ -28,6 +28,9 @@ class Args {
   std::vector<std::string> args_;
 };
 
+// `text` as an integer in [1, max]; else UsageError "rbcflow COMMAND: OPTION must be ...".
+long positive_integer(const std::string& command, const std::string& option, const std::string& text, long max);
+
 int run_info(Args& args);
 int run_shape(Args& args);
 int run_check(Args& args);

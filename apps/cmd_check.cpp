@@ -224,20 +224,6 @@ void print_memory(const Scenario& s) {
   }
 }
 
-int parse_ranks(const std::string& text) {
-  std::size_t used = 0;
-  long v = -1;
-  try {
-    v = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size() || v < 1 || v > 1'000'000) {
-    throw UsageError("rbcflow check: --ranks must be an integer from 1 to 1000000, got '" + text + "'");
-  }
-  return static_cast<int>(v);
-}
-
 }  // namespace
 
 int run_check(Args& args) {
@@ -257,7 +243,8 @@ int run_check(Args& args) {
   }
   const std::string file = args.positional("case file (CASE.toml)");
   std::string ranks_text;
-  const std::optional<int> ranks = args.option("--ranks", ranks_text) ? std::optional(parse_ranks(ranks_text)) : std::nullopt;
+  std::optional<int> ranks;
+  if (args.option("--ranks", ranks_text)) ranks = static_cast<int>(positive_integer("check", "--ranks", ranks_text, 1'000'000));
   args.finish();
   const Case c = read_case(file);
   check_output_dir(c, c.output.dir);

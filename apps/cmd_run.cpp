@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "cli.h"
@@ -16,20 +17,6 @@ namespace rbcflow::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-long parse_steps(const std::string& text) {
-  std::size_t used = 0;
-  long v = -1;
-  try {
-    v = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size() || v < 1) {
-    throw UsageError("rbcflow run: --steps must be a positive integer, got '" + text + "'");
-  }
-  return v;
-}
 
 void print_help() {
   std::printf(
@@ -60,7 +47,7 @@ int run_run(Args& args) {
   args.option("--steps", steps_text);
   const fs::path case_file = args.positional("case file (CASE.toml)");
   args.finish();
-  request.steps = steps_text.empty() ? 0 : parse_steps(steps_text);  // 0: to time.end
+  request.steps = steps_text.empty() ? 0 : positive_integer("run", "--steps", steps_text, std::numeric_limits<long>::max());  // 0: to time.end
 
   request.c = read_case(case_file);
   if (!out.empty()) request.c.output.dir = out;

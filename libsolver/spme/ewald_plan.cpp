@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "real_space_sum.h"
 
@@ -39,13 +40,20 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& poi
 
 namespace {
 
-PointField rows_of(const PointField& points, SourceRows rows) { return points.middleRows(rows.begin, rows.end - rows.begin); }
+// SourceRows or TargetRows of `points`.
+template <typename Rows>
+PointField rows_of(const PointField& points, Rows rows) {
+  return points.middleRows(rows.begin, rows.end - rows.begin);
+}
 
-// The rows, or std::invalid_argument when they are not rows of n sources.
-SourceRows checked(SourceRows rows, Eigen::Index n) {
-  if (rows.begin < 0 || rows.end < rows.begin || rows.end > n)
-    throw std::invalid_argument("EwaldPlan: source rows [" + std::to_string(rows.begin) + ", " +
+// The rows, or std::invalid_argument when they are not rows of n sources (targets).
+template <typename Rows>
+Rows checked(Rows rows, Eigen::Index n) {
+  if (rows.begin < 0 || rows.end < rows.begin || rows.end > n) {
+    const char* what = std::is_same_v<Rows, SourceRows> ? "source" : "target";
+    throw std::invalid_argument(std::string("EwaldPlan: ") + what + " rows [" + std::to_string(rows.begin) + ", " +
                                 std::to_string(rows.end) + ") of " + std::to_string(n));
+  }
   return rows;
 }
 
@@ -68,19 +76,6 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sou
   if (has_real_space_sources())
     neighbors_.emplace(grid->box(), grid->parameters().cutoff, rows_of(sources, rows), targets);
 }
-
-namespace {
-
-TargetRows checked(TargetRows rows, Eigen::Index n) {
-  if (rows.begin < 0 || rows.end < rows.begin || rows.end > n)
-    throw std::invalid_argument("EwaldPlan: target rows [" + std::to_string(rows.begin) + ", " +
-                                std::to_string(rows.end) + ") of " + std::to_string(n));
-  return rows;
-}
-
-PointField rows_of(const PointField& points, TargetRows rows) { return points.middleRows(rows.begin, rows.end - rows.begin); }
-
-}  // namespace
 
 EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sources, const PointField& targets,
                      TargetRows rows)

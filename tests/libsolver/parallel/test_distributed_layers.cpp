@@ -48,6 +48,16 @@ double spread_over_ranks(const Communicator& ranks, const Eigen::MatrixXd& m) {
   return (m - root).cwiseAbs().maxCoeff();
 }
 
+// A D = 3.2 tube in a 4 x 4 x 4 box, elements of 0.5: the wall of the wall tests.
+const Eigen::Vector3d kTubeBox(4.0, 4.0, 4.0);
+std::shared_ptr<const WallElements> small_tube() {
+  TubeSpec spec;
+  spec.diameter = 3.2;
+  spec.box = kTubeBox;
+  spec.element_size = 0.5;
+  return std::make_shared<const WallElements>(tube(spec));
+}
+
 }  // namespace
 
 TEST(Ownership, BlocksCoverTheCellsInRankOrder) {
@@ -182,12 +192,8 @@ TEST(DistributedLayers, ARankWithoutCells) {
 // of the grid (wall_operator.h): the same as on one rank to the rounding of the transforms and
 // of the sum (the same bits in a build without FFTW's MPI library: the ranks' rows are disjoint).
 TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
-  TubeSpec spec;
-  spec.diameter = 3.2;
-  spec.box = Eigen::Vector3d(4.0, 4.0, 4.0);
-  spec.element_size = 0.5;
-  auto e = std::make_shared<const WallElements>(tube(spec));
-  const PeriodicBox box(spec.box);
+  const auto e = small_tube();
+  const PeriodicBox box(kTubeBox);
   const auto assembled = WallOperator::RealSpace::assembled;
   WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled));
   WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, Communicator::world()));
@@ -211,12 +217,8 @@ TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
 // blocks that cross the slabs; a rank with no points (3 ranks, 2 blocks) still takes part.
 TEST(DistributedWall, VelocityAtPointsOnTheRanksEqualsOneRank) {
   const Communicator world = Communicator::world();
-  TubeSpec spec;
-  spec.diameter = 3.2;
-  spec.box = Eigen::Vector3d(4.0, 4.0, 4.0);
-  spec.element_size = 0.5;
-  auto e = std::make_shared<const WallElements>(tube(spec));
-  const PeriodicBox box(spec.box);
+  const auto e = small_tube();
+  const PeriodicBox box(kTubeBox);
   PointField points(120, 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     const double angle = 0.37 * static_cast<double>(i), radius = i % 3 == 0 ? 1.5 : 0.8 * (i % 5) / 4.0;
