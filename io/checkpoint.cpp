@@ -96,10 +96,7 @@ bool CheckpointWriter::shared_by_ranks() { return h5::parallel_io(); }
 
 void CheckpointWriter::write(const fs::path& file, const Ranks& ranks) const {
   const h5::QuietErrors quiet;
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  std::string name = ".";
-  name.append(file.filename().string()).append(".tmp.").append(ranks.tag);
-  const fs::path tmp = dir / name;
+  const fs::path tmp = temporary_beside(file, ranks.tag);
   try {
     {
       const h5::Id f = h5::create_file(tmp, ranks.mpi_handle);

@@ -19,10 +19,10 @@
 #include "libsolver/parallel/communicator.h"
 #include "scenario/branch_monitor.h"
 #include "scenario/checkpoint.h"
-#include "scenario/shared_output.h"
 #include "scenario/derived.h"
 #include "scenario/physical_units.h"
 #include "scenario/run_output.h"
+#include "scenario/shared_output.h"
 #include "scenario/scenario.h"
 
 namespace rbcflow {
