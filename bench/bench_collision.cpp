@@ -2,11 +2,13 @@
 // periodic box, h_s = 0.04. Argument: the lattice gap, 0.5 (nothing within h_s: detection by
 // bounding spheres only) or 0.02 (every cell within h_s of its six neighbours, 81 pairs with
 // the periodic images). Counters: pairs found, detection passes.
-// BM_PlaceTubeCells/K: random placement of K red cells (N = 16) at the tube hematocrit 0.30 in
-// the D = 6 tube of bench_step's tubeK cases (sequential addition, then compression).
+// BM_PlaceTubeCells, BM_PlaceWideTubeCells: random placement of K red cells (N = 16) at the
+// tube hematocrit 0.30 in the D = 6 tube of bench_step's tubeK cases and in the D = 12 tube of
+// the 1,000-cell case (sequential addition, then compression), three seeds / one.
 //   build/bin/bench_collision
 #include <benchmark/benchmark.h>
 
+#include <numbers>
 #include <vector>
 
 #include "geometry/contact/cell_placement.h"
@@ -42,16 +44,20 @@ void BM_Collision27Cells(benchmark::State& state) {
 }
 BENCHMARK(BM_Collision27Cells)->Arg(50)->Arg(2)->Unit(benchmark::kMillisecond);
 
-void BM_PlaceTubeCells(benchmark::State& state) {
+// K cells (N = 16) at H_T = 0.30 in a tube of diameter D with the wall meshed at size h; the
+// period holds the K cells. Placement is random, so its cost varies with the seed.
+void place_in_tube(benchmark::State& state, double diameter, double element_size) {
   const int count = static_cast<int>(state.range(0));
-  const Eigen::Vector3d box(6.6, 6.6, 13.33 * count / 27.0);
-  const VesselMesh vessel = tube(TubeSpec{6.0, 2, box, 0.25});
+  const double side = diameter + 0.6;
+  const double cells_per_length = 0.30 * 0.25 * std::numbers::pi * diameter * diameter / (4.0 / 3.0 * std::numbers::pi);
+  const Eigen::Vector3d box(side, side, count / cells_per_length);
+  const VesselMesh vessel = tube(TubeSpec{diameter, 2, box, element_size});
   const SHSurface rbc = make_biconcave(16);
   PlacementSpec spec;
   spec.box = box;
   spec.count = count;
   spec.gap = 0.05;
-  spec.seed = 1;
+  spec.seed = static_cast<std::uint64_t>(state.range(1));
   int sweeps = 0;
   for (auto _ : state) {
     const Placement p = place_cells(rbc, spec, &vessel);
@@ -59,8 +65,25 @@ void BM_PlaceTubeCells(benchmark::State& state) {
     sweeps = p.compression_sweeps;
   }
   state.counters["sweeps"] = sweeps;
+  state.counters["s_per_cell"] = benchmark::Counter(count, benchmark::Counter::kIsIterationInvariantRate |
+                                                               benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_PlaceTubeCells)->Arg(8)->Arg(27)->Iterations(1)->Unit(benchmark::kSecond);
+
+// bench_step's tubeK cases: the D = 6 tube of data/cases/tube_27_cells.toml, h = 0.25.
+void BM_PlaceTubeCells(benchmark::State& state) { place_in_tube(state, 6.0, 0.25); }
+BENCHMARK(BM_PlaceTubeCells)
+    ->ArgsProduct({{8, 27, 64, 125}, {1, 2, 3}})
+    ->ArgNames({"cells", "seed"})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// data/cases/tube_1000_cells.toml's D = 12 tube, h = 0.4.
+void BM_PlaceWideTubeCells(benchmark::State& state) { place_in_tube(state, 12.0, 0.4); }
+BENCHMARK(BM_PlaceWideTubeCells)
+    ->ArgsProduct({{125, 512, 1000}, {1}})
+    ->ArgNames({"cells", "seed"})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 

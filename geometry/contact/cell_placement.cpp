@@ -29,6 +29,10 @@ constexpr double kStartScale = 0.5;
 constexpr int kMaxSweeps = 4000, kPatience = 150;
 constexpr double kMaxGrowth = 0.05, kMinGrowth = 1e-4;
 constexpr double kMaxStep = 0.15, kMinStep = 1e-3;  // translation / scaled radius; rotation, rad
+// After a growth, the cells it made touch are moved apart: trials per cell and pass, passes,
+// and the step of those moves (as kMaxStep).
+constexpr int kRepairTrials = 40, kRepairRounds = 6;
+constexpr double kRepairStep = 0.3;
 // Pre-deformed cells in narrow tubes: the stretched cell keeps this fraction of the lumen
 // radius free (beside the gap) against the facets of the meshed wall; the squeeze across the
 // tube is searched in steps of kSqueezeStep down to kSmallestSqueeze, the stretch along it up
@@ -124,11 +128,12 @@ struct Problem {
   // Against the wall and its own periodic images a cell is tested at full size even while the
   // compression holds the cells smaller: those constraints do not move, so a cell must never sit
   // where it could not grow (a daughter narrower than the cell would hold it small for good).
+  // The tests run cheapest first: the wall's (a closest-point query per vertex near it) last.
   bool fits(const CellPose& p, const Packing& packing, int skip = -1) const {
+    if (!apart_from_others(p, packing, skip)) return false;
     CellPose full = p;
     full.scale = 1.0;
-    if (!overlap.inside_wall(full) || !overlap.apart(full, full, true)) return false;
-    return apart_from_others(p, packing, skip);
+    return overlap.apart(full, full, true) && overlap.inside_wall(full);
   }
   bool apart_from_others(const CellPose& p, const Packing& packing, int skip) const {
     return packing.all_near(p.position,
@@ -157,16 +162,12 @@ struct Problem {
     return cells;
   }
 
-  // One Monte Carlo sweep: each cell tries a random small move (a turn about its own axis
-  // only, for along_axis orientations); a move is kept when it overlaps nothing. Returns the
-  // fraction kept.
+  // One Monte Carlo sweep: each cell tries a random small move; a move is kept when it
+  // overlaps nothing. Returns the fraction kept.
   double sweep(std::mt19937_64& rng, Packing& cells, double step) const {
     int kept = 0;
     for (int i = 0; i < cells.size(); ++i) {
-      CellPose p = cells.cells()[i];
-      for (int k = 0; k < 3; ++k) p.position[k] += step * overlap.radius() * p.scale * (2.0 * uniform(rng) - 1.0);
-      const Eigen::Vector3d turn_axis = axis ? Eigen::Vector3d(p.rotation.col(2)) : random_direction(rng);
-      p.rotation = Eigen::AngleAxisd(step * (2.0 * uniform(rng) - 1.0), turn_axis).toRotationMatrix() * p.rotation;
+      const CellPose p = moved(rng, cells.cells()[i], step);
       if (fits(p, cells, i)) {
         cells.replace(i, p);
         ++kept;
@@ -176,11 +177,42 @@ struct Problem {
   }
 
   // After a growth: the cells have not moved, so only the cell-cell tests can fail (the wall
-  // and the periodic images were tested at full size).
-  bool all_apart(const Packing& cells) const {
+  // and the periodic images were tested at full size). The cells that touch another.
+  std::vector<int> touching(const Packing& cells) const {
+    std::vector<int> out;
     for (int i = 0; i < cells.size(); ++i)
-      if (!apart_from_others(cells.cells()[i], cells, i)) return false;
-    return true;
+      if (!apart_from_others(cells.cells()[i], cells, i)) out.push_back(i);
+    return out;
+  }
+
+  // Moves the touching cells of a grown packing apart, each by random moves (a step of up to
+  // kRepairStep of its scaled radius and angle) that must clear everything, in up to
+  // kRepairRounds passes over those still touching. A growth then costs work in proportion to
+  // the few cells it makes touch, not a sweep of all cells per failed try: the compression's
+  // sweeps no longer grow with the count. Returns whether no cell touches another.
+  bool separate(std::mt19937_64& rng, Packing& cells, std::vector<int> touching_cells) const {
+    for (int round = 0; round < kRepairRounds && !touching_cells.empty(); ++round) {
+      for (const int i : touching_cells) {
+        if (apart_from_others(cells.cells()[i], cells, i)) continue;  // its partner moved away
+        for (int trial = 0; trial < kRepairTrials; ++trial) {
+          const CellPose p = moved(rng, cells.cells()[i], kRepairStep);
+          if (fits(p, cells, i)) {
+            cells.replace(i, p);
+            break;
+          }
+        }
+      }
+      std::erase_if(touching_cells, [&](int i) { return apart_from_others(cells.cells()[i], cells, i); });
+    }
+    return touching_cells.empty();
+  }
+
+  // A random small move of a cell (a turn about its own axis only, for along_axis orientations).
+  CellPose moved(std::mt19937_64& rng, CellPose p, double step) const {
+    for (int k = 0; k < 3; ++k) p.position[k] += step * overlap.radius() * p.scale * (2.0 * uniform(rng) - 1.0);
+    const Eigen::Vector3d turn_axis = axis ? Eigen::Vector3d(p.rotation.col(2)) : random_direction(rng);
+    p.rotation = Eigen::AngleAxisd(step * (2.0 * uniform(rng) - 1.0), turn_axis).toRotationMatrix() * p.rotation;
+    return p;
   }
 };
 
@@ -393,7 +425,7 @@ Placement place_cells(const SHSurface& reference, const PlacementSpec& spec, con
       Packing grown = cells;  // the same positions, so the same bins
       const double next = std::min(1.0, scale * (1.0 + growth));
       grown.set_scale(next);
-      if (problem.all_apart(grown)) {
+      if (problem.separate(rng, grown, problem.touching(grown))) {
         cells = std::move(grown);
         scale = next;
         growth = std::min(kMaxGrowth, 1.5 * growth);

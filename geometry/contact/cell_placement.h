@@ -4,7 +4,10 @@
 // and where that jams before the count, shrink-then-grow compression (all cells placed at a
 // reduced size, then alternately moved at random and grown, a Monte Carlo compression of hard
 // bodies; the moves keep every state free of overlap; the wall and a cell's own periodic images
-// are tested at full size throughout, so no cell waits where it cannot grow). Deterministic for a seed on every
+// are tested at full size throughout, so no cell waits where it cannot grow). A growth that
+// makes a few cells touch moves just those apart (random moves that clear everything) instead
+// of being refused, so the sweeps do not grow with the count and placement costs O(count):
+// bench_collision's BM_PlaceWideTubeCells. Deterministic for a seed on every
 // machine: doubles come from the raw 64-bit output of std::mt19937_64.
 //
 // Overlap and wall tests use the reference surface's grid triangulation at `check_order`:
