@@ -72,7 +72,8 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
       const double rc = e->choice.parameters.cutoff;
       const double pairs = nodes * (4.0 * std::numbers::pi / 3.0) * rc * rc * rc * nodes / volume;
       const auto& K = e->choice.parameters.grid;
-      m.kept_coefficients = 16 * pairs;
+      // The plans keep them only within their bound (each rank's plan holds its sources' pairs).
+      m.kept_coefficients = pairs / ranks <= static_cast<double>(s.options.domain.max_kept_pairs) ? 16 * pairs : 0.0;
       const double split_bytes = 6 * pairs + m.kept_coefficients + nodes * (8.3 * P + 250);
       const double work_arrays = 120.0 * K[0] * K[1] * K[2];
       const double split = split_bytes + (slabs ? kSplitEwaldWorkArrays * work_arrays : 0.0);

@@ -105,7 +105,8 @@ std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes
   if (cell_nodes > 0) {
     add("cells, single layer", EwaldKernel::stokeslet, cell_nodes, {});
     if (c.domain.viscosity_ratio != 1.0) {
-      add("cells, double layer", EwaldKernel::stresslet, cell_nodes, double_layer_real_space(max_kept_pairs));
+      add("cells, double layer", EwaldKernel::stresslet, cell_nodes,
+          double_layer_real_space(max_kept_pairs, tolerance, box, cell_nodes));
     }
   }
   if (wall_nodes > 0) add("wall, single layer", EwaldKernel::stokeslet, wall_nodes, {});

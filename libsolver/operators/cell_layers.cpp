@@ -12,6 +12,18 @@
 
 namespace rbcflow {
 
+RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs, double tolerance, const PeriodicBox& box,
+                                     long nodes) {
+  if (max_kept_pairs <= 0) return {};
+  const RealSpaceUse kept{0.2, static_cast<double>(max_kept_pairs)};
+  try {
+    choose_ewald_parameters(EwaldKernel::stresslet, tolerance, box, nodes, nodes, kept);
+    return kept;
+  } catch (const std::invalid_argument&) {  // no choice within the kept pairs; a bad tolerance
+    return {};                              // is refused by the default choice in turn
+  }
+}
+
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
                        SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density)
@@ -64,7 +76,8 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     fold_radius[0] = pair_share_radius(box, single_grid->parameters().cutoff);
     if (with_double_layer) {
       double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
-                               double_layer_real_space(domain_.max_kept_pairs), domain_.ranks);
+                               double_layer_real_space(domain_.max_kept_pairs, domain_.ewald_tolerance, box, nc * np),
+                               domain_.ranks);
       xi_double = double_grid->parameters().xi;
       fold_radius[1] = pair_share_radius(box, double_grid->parameters().cutoff);
     }

@@ -47,11 +47,11 @@ struct CellLayersTimings {
 // 5 ns to read, so over a step's products about a fifth of computing them. The choice
 // then moves to a larger cutoff and a coarser grid (tube27: cell products 3.9 -> 3.0 s per
 // step), within the pairs a plan keeps.
-// Without kept coefficients (max_kept_pairs = 0: a memory budget that cannot hold them) every
-// product computes them, and the choice is the default one.
-inline RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs) {
-  return max_kept_pairs > 0 ? RealSpaceUse{0.2, static_cast<double>(max_kept_pairs)} : RealSpaceUse{};
-}
+// Without kept coefficients (max_kept_pairs = 0: a memory budget that cannot hold them), or
+// where no choice within max_kept_pairs meets the tolerance (many cells: the pairs grow with
+// the count at a fixed cutoff), every product computes them, and the choice is the default one.
+RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs, double tolerance, const PeriodicBox& box,
+                                     long nodes);
 
 struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space

@@ -62,3 +62,27 @@ TEST(CellLayers, SingleLayerOfTheStepDensityEqualsTheKeptTables) {
     EXPECT_THROW(at_once.single_layer(2 * f), std::logic_error);
   }
 }
+
+// The double layer's Ewald choice keeps its pair coefficients within the plans' bound where a
+// choice there meets the tolerance (tube27: 13,824 nodes), and falls back to the default choice
+// where none does: the 512,000 nodes of data/cases/tube_1000_cells.toml need more than 2e8
+// pairs at any cutoff the grid limit allows, which the bounded chooser refuses.
+TEST(CellLayers, DoubleLayerKeepsPairsOnlyWhereTheBoundAllows) {
+  const PeriodicBox tube27(Eigen::Vector3d(6.6, 6.6, 13.33));
+  const RealSpaceUse kept = double_layer_real_space(kMaxKeptPairs, 1e-6, tube27, 13824);
+  EXPECT_EQ(kept.weight, 0.2);
+  EXPECT_EQ(kept.max_pairs, static_cast<double>(kMaxKeptPairs));
+  const RealSpaceUse none = double_layer_real_space(0, 1e-6, tube27, 13824);
+  EXPECT_EQ(none.weight, RealSpaceUse{}.weight);
+
+  const PeriodicBox tube1000(Eigen::Vector3d(12.6, 12.6, 123.56));
+  const long nodes = 512000;
+  EXPECT_THROW(choose_ewald_parameters(EwaldKernel::stresslet, 1e-6, tube1000, nodes, nodes,
+                                       RealSpaceUse{0.2, static_cast<double>(kMaxKeptPairs)}),
+               std::invalid_argument);
+  const RealSpaceUse fallback = double_layer_real_space(kMaxKeptPairs, 1e-6, tube1000, nodes);
+  EXPECT_EQ(fallback.weight, RealSpaceUse{}.weight);
+  EXPECT_EQ(fallback.max_pairs, RealSpaceUse{}.max_pairs);
+  const EwaldChoice c = choose_ewald_parameters(EwaldKernel::stresslet, 1e-6, tube1000, nodes, nodes, fallback);
+  EXPECT_GT(c.neighbours_per_target * nodes, static_cast<double>(kMaxKeptPairs));  // the plans will not keep them
+}
