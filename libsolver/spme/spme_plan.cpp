@@ -1,5 +1,6 @@
 #include "spme_plan.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -91,6 +92,9 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(q, n_sources(), "the double-layer density");
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
+  // Each array is freed once its successor holds the data: at most the six real grids and
+  // their spectra live together (96 bytes a grid point, where holding the real grids and the
+  // velocity's spectra throughout took 120): the largest memory of a product.
   std::vector<double> density(6 * static_cast<std::size_t>(n_sources()));
   FftwBuffer<double> real(grid_->real_size(6));
 #pragma omp parallel for schedule(static)
@@ -109,15 +113,16 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   sources_->spread<6>(density.data(), real.data());
   std::vector<double>().swap(density);
   timings_.spreading = seconds_since(t);
+  FftwBuffer<fftw_complex> spectrum(grid_->spectrum_size(6));
+  grid_->forward(6, real.data(), spectrum.data());
+  real = FftwBuffer<double>();  // freed (the moved-from temporary takes the grids)
+  timings_.fft = seconds_since(t);
   FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
-  {
-    FftwBuffer<fftw_complex> spectrum(grid_->spectrum_size(6));
-    grid_->forward(6, real.data(), spectrum.data());
-    timings_.fft = seconds_since(t);
-    grid_->apply_stresslet(spectrum.data(), velocity.data());
-  }
+  grid_->apply_stresslet(spectrum.data(), velocity.data());
+  spectrum = FftwBuffer<fftw_complex>();
   timings_.influence = seconds_since(t);
-  return transform_and_interpolate(velocity, real);
+  FftwBuffer<double> velocity_grid(grid_->real_size(3));
+  return transform_and_interpolate(velocity, velocity_grid);
 }
 
 PointField SpmePlan::transform_and_interpolate(FftwBuffer<fftw_complex>& velocity, FftwBuffer<double>& real) {
@@ -135,10 +140,12 @@ std::size_t SpmePlan::stencil_bytes() const {
 }
 
 std::size_t SpmePlan::work_bytes(int components) const {
+  const std::size_t density = components * static_cast<std::size_t>(n_sources()) * sizeof(double);
   const std::size_t real = grid_->real_size(components) * sizeof(double);
-  const std::size_t spectra =
-      (grid_->spectrum_size(components) + (components == 6 ? grid_->spectrum_size(3) : 0)) * sizeof(fftw_complex);
-  return components * static_cast<std::size_t>(n_sources()) * sizeof(double) + real + spectra;
+  const std::size_t spectra = grid_->spectrum_size(components) * sizeof(fftw_complex);
+  // The single layer holds all three for its product; the double layer its six real grids
+  // with their densities, then with their spectra (double_layer()).
+  return components == 6 ? real + std::max(density, spectra) : density + real + spectra;
 }
 
 }  // namespace rbcflow
