@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   // Rank 0 prints the table; every other rank only its peak memory (on stderr), at the end.
   if (!ranks.root() && !std::freopen("/dev/null", "w", stdout)) return 1;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_step single|minicase|tubeK [--steps K]  (tubeK: K cells, e.g. tube27)\n");
+    std::fprintf(stderr, "usage: bench_step single|minicase|tubeK|wideK [--steps K]  (K cells in the D = 6 or D = 12 tube, e.g. tube27)\n");
     return 2;
   }
   reuse_freed_memory();  // as rbcflow does

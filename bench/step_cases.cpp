@@ -22,14 +22,26 @@ StepCase from_case(Case c) {
   return {make_stepper(s), estimate};
 }
 
-// data/cases/tube_27_cells.toml with `count` cells at its tube hematocrit: the period grows with
-// the count (13.33 for 27 cells), the cells placed by the same code as rbcflow run's.
-StepCase tube_cells(int count) {
-  Case c = read_case(fs::path(RBCFLOW_CASES_DIR) / "tube_27_cells.toml");
-  c.domain.box[2] = 13.33 * count / 27.0;
+// A data/cases tube case with `count` cells at its tube hematocrit: the period grows with the
+// count (`period` for `cells` cells), the cells placed by the same code as rbcflow run's.
+StepCase tube_cells(const char* file, double period, int cells, int count) {
+  Case c = read_case(fs::path(RBCFLOW_CASES_DIR) / file);
+  c.domain.box[2] = period * count / cells;
   c.cells->hematocrit.reset();
   c.cells->count = count;
   return from_case(std::move(c));
+}
+
+// The K of a name "<prefix>K", or 0.
+int count_in(const std::string& name, const std::string& prefix) {
+  if (!name.starts_with(prefix)) return 0;
+  std::size_t used = 0;
+  int count = 0;
+  try {
+    count = std::stoi(name.substr(prefix.size()), &used);
+  } catch (const std::exception&) {
+  }
+  return count >= 1 && prefix.size() + used == name.size() ? count : 0;
 }
 
 }  // namespace
@@ -38,16 +50,11 @@ StepCase make_step_case(const std::string& name) {
   if (name == "single" || name == "minicase") {
     return from_case(read_case(fs::path(RBCFLOW_BENCH_CASES_DIR) / (name + ".toml")));
   }
-  if (name.starts_with("tube")) {
-    std::size_t used = 0;
-    int count = 0;
-    try {
-      count = std::stoi(name.substr(4), &used);
-    } catch (const std::exception&) {
-    }
-    if (count >= 1 && 4 + used == name.size()) return tube_cells(count);
-  }
-  throw std::invalid_argument("unknown case '" + name + "' (single, minicase, tubeK: K cells, e.g. tube27)");
+  // tubeK: data/cases/tube_27_cells.toml's D = 6 tube; wideK: tube_1000_cells.toml's D = 12.
+  if (const int count = count_in(name, "tube")) return tube_cells("tube_27_cells.toml", 13.33, 27, count);
+  if (const int count = count_in(name, "wide")) return tube_cells("tube_1000_cells.toml", 123.56, 1000, count);
+  throw std::invalid_argument("unknown case '" + name +
+                              "' (single, minicase, tubeK, wideK: K cells in the D = 6 or D = 12 tube, e.g. tube27)");
 }
 
 }  // namespace rbcflow::bench
