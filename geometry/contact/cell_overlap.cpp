@@ -17,6 +17,18 @@ TriangleMesh centred_mesh(const SHSurface& reference, int check_order, const Eig
   return m;
 }
 
+// The points every test measures: the triangulation's vertices and the solver's own grid
+// (Gauss, N x 2N), which lies between them. A surface bulges beyond its triangles by their
+// sagitta, at a red cell's rim up to about the placement gap: tested only at the vertices, a
+// grid point of a placed N = 8 cell sat 0.001 beyond the wall of a network.
+Eigen::Matrix<double, Eigen::Dynamic, 3> tested_points(const SHSurface& reference, const TriangleMesh& mesh,
+                                                       const Eigen::Vector3d& centroid) {
+  const TriangleMesh grid = reference.triangulate(SHTransform::gauss(reference.order()));
+  Eigen::Matrix<double, Eigen::Dynamic, 3> points(mesh.num_points() + grid.num_points(), 3);
+  points << mesh.points, grid.points.rowwise() - centroid.transpose();
+  return points;
+}
+
 // On the grid of order 2N: the integrands of the volume moments are products of three fields.
 Eigen::Vector3d reference_centroid(const SHSurface& reference) {
   return volume_centroid(reference.geometry(SHTransform::gauss(2 * reference.order())));
@@ -27,7 +39,8 @@ Eigen::Vector3d reference_centroid(const SHSurface& reference) {
 CellOverlap::Body::Body(const SHSurface& surface, int check_order)
     : centroid(reference_centroid(surface)),
       mesh(centred_mesh(surface, check_order, centroid)),
-      radius(mesh.points.rowwise().norm().maxCoeff()),
+      points(tested_points(surface, mesh, centroid)),
+      radius(points.rowwise().norm().maxCoeff()),
       tree(mesh) {
   normals.resize(mesh.num_triangles(), 3);
   for (int t = 0; t < mesh.num_triangles(); ++t) {
@@ -59,13 +72,13 @@ CellOverlap::CellOverlap(const std::vector<SHSurface>& bodies, int check_order, 
 // loaded machine); callers run independent tests side by side instead.
 bool CellOverlap::vertices_apart(const CellPose& a, const CellPose& b, const Eigen::Vector3d& shift) const {
   const Body& body_a = bodies_[a.body];
-  const TriangleMesh& mesh_b = bodies_[b.body].mesh;
+  const auto& points_b = bodies_[b.body].points;
   const Eigen::Matrix3d to_a = a.rotation.transpose() / a.scale;
   const double reach = body_a.radius + gap_ / a.scale, gap = gap_ / a.scale;  // in a's unscaled body frame
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
   double free_radius = -1.0;  // about anchor, beyond gap (none yet)
-  for (int v = 0; v < mesh_b.num_points(); ++v) {
-    const Eigen::Vector3d x = b.rotation * (b.scale * mesh_b.points.row(v).transpose()) + b.position + shift;
+  for (Eigen::Index v = 0; v < points_b.rows(); ++v) {
+    const Eigen::Vector3d x = b.rotation * (b.scale * points_b.row(v).transpose()) + b.position + shift;
     const Eigen::Vector3d y = to_a * (x - a.position);
     if (y.norm() > reach || (y - anchor).norm() <= free_radius) continue;
     const TriangleAabbTree::ClosestPoint c = body_a.tree.closest_point(y);
@@ -95,7 +108,7 @@ bool CellOverlap::apart(const CellPose& a, const CellPose& b, bool same) const {
 
 bool CellOverlap::inside_wall(const CellPose& a) const {
   if (!wall_) return true;
-  const TriangleMesh& mesh = bodies_[a.body].mesh;
+  const auto& points = bodies_[a.body].points;
   const double centre = wall_->closest(a.position).signed_distance;
   if (centre >= bodies_[a.body].radius * a.scale + gap_) return true;
   if (centre <= 0) return false;
@@ -103,8 +116,8 @@ bool CellOverlap::inside_wall(const CellPose& a) const {
   // free of the wall; vertices within s - gap of the last one queried (first, the centre) pass.
   Eigen::Vector3d anchor = a.position;
   double free_radius = centre - gap_;
-  for (int v = 0; v < mesh.num_points(); ++v) {
-    const Eigen::Vector3d x = a.rotation * (a.scale * mesh.points.row(v).transpose()) + a.position;
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    const Eigen::Vector3d x = a.rotation * (a.scale * points.row(v).transpose()) + a.position;
     if ((x - anchor).norm() <= free_radius) continue;
     const double s = wall_->closest(x).signed_distance;
     if (s < gap_) return false;

@@ -2,8 +2,9 @@
 // Hard-body tests between cells, each a copy of one of a few bodies (surfaces) turned, scaled
 // about its centroid and moved (a pose), in a periodic box and inside an optional vessel wall.
 // One AABB tree over each body's grid triangulation serves every pair: the vertices of one cell
-// are taken into the other's body frame. Two cells are apart when every vertex of each is
-// outside the other and at least `gap` from its triangles (both ways round). Cells placed at
+// are taken into the other's body frame. Two cells are apart when every vertex of each, and
+// every point of its order-N grid (the solver's points, between the vertices), is outside the
+// other and at least `gap` from its triangles (both ways round); likewise inside the wall. Cells placed at
 // random are copies of one reference; cells listed in a case (each with its own orientation
 // and perturbation) are a body each, with the identity pose at their centroid.
 #include <Eigen/Core>
@@ -33,7 +34,7 @@ class CellOverlap {
   CellOverlap(const std::vector<SHSurface>& bodies, int check_order, const Eigen::Vector3d& period,
               const WallDistance* wall, double gap);
 
-  // Of body 0 (the reference): the largest distance of its vertices from its centroid, the
+  // Of body 0 (the reference): the largest distance of its tested points from its centroid, the
   // centroid, and its triangulation with the centroid at the origin.
   double radius() const { return bodies_[0].radius; }
   const Eigen::Vector3d& centroid() const { return bodies_[0].centroid; }
@@ -54,6 +55,7 @@ class CellOverlap {
     Body(const SHSurface& surface, int check_order);
     Eigen::Vector3d centroid;
     TriangleMesh mesh;  // the surface's triangulation, centroid at the origin
+    Eigen::Matrix<double, Eigen::Dynamic, 3> points;  // tested: mesh's vertices and the order-N grid
     Eigen::Matrix<double, Eigen::Dynamic, 3> normals;
     double radius = 0.0;
     TriangleAabbTree tree;

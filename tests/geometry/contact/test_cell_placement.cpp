@@ -81,6 +81,18 @@ double smallest_wall_distance(const std::vector<SHSurface>& cells, const WallDis
   return smallest;
 }
 
+// The same over the points the solver uses: each cell's own grid (Gauss, N x 2N), between the
+// check mesh's vertices.
+double smallest_grid_wall_distance(const std::vector<SHSurface>& cells, const WallDistance& wall) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const SHSurface& s : cells) {
+    const Eigen::MatrixX3d x = s.geometry(SHTransform::gauss(s.order())).x;
+    for (Eigen::Index v = 0; v < x.rows(); ++v)
+      smallest = std::min(smallest, wall.closest(x.row(v).transpose()).signed_distance);
+  }
+  return smallest;
+}
+
 VesselMesh tube_3_5() { return tube(TubeSpec{3.5, 2, Eigen::Vector3d(4, 4, 8), 0.25}); }
 
 }  // namespace
@@ -136,6 +148,7 @@ TEST(CellPlacement, TubeHematocrit030InTube35) {
   const std::vector<SHSurface> cells = placed_surfaces(rbc, p.cells);
   EXPECT_GE(smallest_separation(cells, spec.box, spec.check_order), kGap);
   EXPECT_GE(smallest_wall_distance(cells, distance, spec.check_order), kGap);
+  EXPECT_GE(smallest_grid_wall_distance(cells, distance), kGap);
 }
 
 // A bifurcation whose narrower daughter (D = 2.7) is narrower than the cell (diameter 2.77):
@@ -164,6 +177,7 @@ TEST(CellPlacement, BifurcationWithADaughterNarrowerThanTheCell) {
   const std::vector<SHSurface> cells = placed_surfaces(rbc, p.cells);
   EXPECT_GE(smallest_separation(cells, spec.box, spec.check_order), spec.gap);
   EXPECT_GE(smallest_wall_distance(cells, distance, spec.check_order), spec.gap);
+  EXPECT_GE(smallest_grid_wall_distance(cells, distance), spec.gap);
 }
 
 TEST(CellPlacement, SameSeedSamePlacement) {
