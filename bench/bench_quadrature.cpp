@@ -84,6 +84,18 @@ void BM_ApplySelfCorrection(benchmark::State& state) {
 }
 BENCHMARK(BM_ApplySelfCorrection)->Arg(12)->Arg(16)->Arg(24)->Arg(32)->Unit(benchmark::kMillisecond);
 
+// Tables of single targets (one per nearly singular target): stencils kept as the points'
+// places, their weights computed at each product.
+void BM_ApplyNeighbourCorrection(benchmark::State& state) {
+  const auto cell = red_cell(static_cast<int>(state.range(0)));
+  const auto targets = neighbour_targets(*cell);
+  const LayerCorrection c(cell, {Layer::single, 2.0}, targets);
+  const Eigen::MatrixXd f = Eigen::MatrixXd::Random(cell->nodes().size(), 3);
+  for (auto _ : state) benchmark::DoNotOptimize(c.apply(f).data());
+  state.counters["targets"] = static_cast<double>(targets.size());
+}
+BENCHMARK(BM_ApplyNeighbourCorrection)->Arg(12)->Arg(16)->Arg(24)->Arg(32)->Unit(benchmark::kMillisecond);
+
 void BM_PeriodicSingleLayerProduct(benchmark::State& state) {
   const auto cell = red_cell(static_cast<int>(state.range(0)));
   const PeriodicBox box(Eigen::Vector3d::Constant(10.0));

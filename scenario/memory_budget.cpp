@@ -64,7 +64,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
     if (double_layer) {
       m.parts.push_back({"singular corrections", cells * (P * Q * 24 + 2.3 * P * P), 1.0});
       const double near_targets = P * std::max(0.05, 2.0 * H);
-      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 64 + 2250), 1.0});
+      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 36 + 2250), 1.0});
     }
     if (const EwaldSum* e = find_sum(s, "cells, double layer")) {
       const double nodes = cells * P;

@@ -6,7 +6,7 @@
 //   cells' geometry      2 fields x (2N+1) x 4N Hermite nodes x 12 doubles + 7 doubles per node
 //   singular (self)      double layer: P Q float kernels of 6 + 2.3 P^2 bytes of node entries
 //   nearly singular      double layer: 2 H P near targets per cell (at least 0.05 P), each
-//                        Q (40 + 24) bytes + 2.25 kB of node entries
+//                        Q (12 + 24) bytes (stencil, kernel) + 2.25 kB of node entries
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 6 bytes each in the list and
 //                        16 kept; 8.3 P bytes of pair shares and 250 bytes of stencils per node;

@@ -2,22 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
 namespace rbcflow {
-namespace {
-
-// Cubic Hermite basis on [0, 1]: value and slope at the left (0) and right (1) ends.
-void hermite_basis(double s, double h, double v[2], double d[2]) {
-  const double s2 = s * s, s3 = s2 * s;
-  v[0] = 2 * s3 - 3 * s2 + 1;
-  v[1] = -2 * s3 + 3 * s2;
-  d[0] = h * (s3 - 2 * s2 + s);
-  d[1] = h * (s3 - s2);
-}
-
-}  // namespace
 
 HermiteInterpolator::HermiteInterpolator(int order, int refinement) {
   if (order < 1 || refinement < 1) throw std::invalid_argument("HermiteInterpolator: bad order or refinement");
@@ -38,22 +27,37 @@ HermiteData HermiteInterpolator::node_data(const SHCoeffs& c) const {
   return data;
 }
 
+namespace {
+
+// The grid cell (i, j) of a point and its offsets (s, t) in [0, 1] within it.
+struct GridCell {
+  int i, j;
+  double s, t;
+};
+
+GridCell locate(double theta, double phi, double dtheta, double dphi, int n_theta, int n_phi) {
+  const double ti = std::clamp(theta / dtheta, 0.0, double(n_theta - 1));
+  const int i = std::min(static_cast<int>(ti), n_theta - 2);
+  double pj = phi / dphi;
+  pj -= n_phi * std::floor(pj / n_phi);
+  const int j = std::min(static_cast<int>(pj), n_phi - 1);
+  return {i, j, ti - i, pj - j};
+}
+
+}  // namespace
+
 HermiteStencil HermiteInterpolator::stencil(double theta, double phi) const {
-  const double ti = std::clamp(theta / dtheta_, 0.0, double(n_theta() - 1));
-  const int i = std::min(static_cast<int>(ti), n_theta() - 2);
-  double pj = phi / dphi_;
-  pj -= n_phi() * std::floor(pj / n_phi());
-  const int j = std::min(static_cast<int>(pj), n_phi() - 1);
-  const double s = ti - i, t = pj - j;
-  double vs[2], ds[2], vt[2], dt[2];
-  hermite_basis(s, dtheta_, vs, ds);
-  hermite_basis(t, dphi_, vt, dt);
-  HermiteStencil st;
-  st.i = i;
-  st.j = j;
-  st.theta_w = {vs[0], ds[0], vs[1], ds[1]};
-  st.phi_w = {vt[0], dt[0], vt[1], dt[1]};
-  return st;
+  const GridCell c = locate(theta, phi, dtheta_, dphi_, n_theta(), n_phi());
+  return {c.i, c.j, hermite_weights(c.s, dtheta_), hermite_weights(c.t, dphi_)};
+}
+
+CompactHermiteStencil HermiteInterpolator::compact_stencil(double theta, double phi) const {
+  constexpr int kMax = std::numeric_limits<std::uint16_t>::max() + 1;
+  if (n_theta() > kMax || n_phi() > kMax)
+    throw std::length_error("HermiteInterpolator: a compact stencil indexes at most 65,536 nodes in theta and phi");
+  const GridCell c = locate(theta, phi, dtheta_, dphi_, n_theta(), n_phi());
+  return {static_cast<std::uint16_t>(c.i), static_cast<std::uint16_t>(c.j), static_cast<float>(c.s),
+          static_cast<float>(c.t)};
 }
 
 }  // namespace rbcflow

@@ -7,7 +7,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <cassert>
+#include <cstdint>
 #include <memory>
+#include <type_traits>
 
 #include "geometry/sph/sph_transform.h"
 
@@ -27,15 +29,15 @@ struct HermiteStencil {
   std::array<double, 4> theta_w;
   std::array<double, 4> phi_w;
 };
-// The same with its weights in single precision (40 bytes against 72), for the large tables
-// the singular corrections keep between products: an interpolated value then carries a relative
-// rounding error of ~1e-7, below the solver's tolerances (singular_quadrature.h).
-struct CompactHermiteStencil {
+// The same with its weights in single precision (40 bytes against 72), for the tables of patch
+// points that many targets read (a ring of node targets): an interpolated value then carries a
+// relative rounding error of ~1e-7, below the solver's tolerances (singular_quadrature.h).
+struct FloatHermiteStencil {
   int i, j;
   std::array<float, 4> theta_w;
   std::array<float, 4> phi_w;
-  static CompactHermiteStencil of(const HermiteStencil& s) {
-    CompactHermiteStencil c{s.i, s.j, {}, {}};
+  static FloatHermiteStencil of(const HermiteStencil& s) {
+    FloatHermiteStencil c{s.i, s.j, {}, {}};
     for (int k = 0; k < 4; ++k) {
       c.theta_w[k] = static_cast<float>(s.theta_w[k]);
       c.phi_w[k] = static_cast<float>(s.phi_w[k]);
@@ -43,6 +45,23 @@ struct CompactHermiteStencil {
     return c;
   }
 };
+// The same for the large tables that one target reads (12 bytes against 72): the corner as 16-bit indices and the point's offsets in the cell, s and t in
+// [0, 1], in single precision; the weights are computed from s and t as the stencil is read
+// (a few flops against the 4 x 4 K multiply-adds of an interpolation). s and t carry an absolute
+// rounding error of ~3e-8, so an interpolated value carries a relative error of ~1e-7, below
+// the solver's tolerances (singular_quadrature.h).
+struct CompactHermiteStencil {
+  std::uint16_t i, j;
+  float s, t;
+};
+
+// Cubic Hermite basis on [0, 1] for a cell of width h: value and slope weights at the left (0)
+// and right (1) ends, in the order {value 0, slope 0, value 1, slope 1}.
+template <class Real>
+inline std::array<double, 4> hermite_weights(Real s_in, double h) {
+  const double s = s_in, s2 = s * s, sm1 = s - 1.0, v1 = s2 * (3.0 - 2.0 * s);
+  return {1.0 - v1, h * s * sm1 * sm1, v1, h * s2 * sm1};  // 1 - 3s^2 + 2s^3, h(s - 2s^2 + s^3), ...
+}
 
 class HermiteInterpolator {
  public:
@@ -57,12 +76,16 @@ class HermiteInterpolator {
   HermiteData node_data(const SHCoeffs& c) const;
 
   HermiteStencil stencil(double theta, double phi) const;
+  // The same point as a CompactHermiteStencil. Throws std::length_error for a grid of more
+  // than 65,536 nodes in theta or phi.
+  CompactHermiteStencil compact_stencil(double theta, double phi) const;
 
   // The K interpolated components at a stencil (data.cols() == 4 K). phi_shift moves the
   // stencil by whole grid cells in phi (>= 0): the point (theta, phi + phi_shift * 2 pi / n_phi).
   // K is a compile-time constant so that the sums stay in registers: this runs for every patch
   // point of every GMRES product.
-  // Stencil: HermiteStencil or CompactHermiteStencil.
+  // Stencil: HermiteStencil, FloatHermiteStencil or CompactHermiteStencil (whose weights are
+  // computed here: a third more time per point than reading them).
   template <int K, typename Stencil, typename Out>
   void interpolate(const HermiteData& data, const Stencil& s, Out&& out, int phi_shift = 0) const {
     assert(data.cols() == 4 * K);
@@ -74,8 +97,16 @@ class HermiteInterpolator {
     // The 4 data types of a corner are one 4-wide packet: weight (theta_w[2a + d_theta] *
     // phi_w[2b + d_phi]) times data, summed over the corners, then across the packet.
     using Packet = Eigen::Array4d;
-    const double tw[4] = {s.theta_w[0], s.theta_w[1], s.theta_w[2], s.theta_w[3]};
-    const double pw[4] = {s.phi_w[0], s.phi_w[1], s.phi_w[2], s.phi_w[3]};
+    std::array<double, 4> tw, pw;
+    if constexpr (std::is_same_v<Stencil, CompactHermiteStencil>) {
+      tw = hermite_weights(s.s, dtheta_);
+      pw = hermite_weights(s.t, dphi_);
+    } else {
+      for (int k = 0; k < 4; ++k) {
+        tw[k] = s.theta_w[k];
+        pw[k] = s.phi_w[k];
+      }
+    }
     const Packet theta[2] = {{tw[0], tw[1], tw[0], tw[1]}, {tw[2], tw[3], tw[2], tw[3]}};
     const Packet phi[2] = {{pw[0], pw[0], pw[1], pw[1]}, {pw[2], pw[2], pw[3], pw[3]}};
     Packet sum[K];

@@ -181,6 +181,12 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   stencils->points_per_table = per_table;
   stencils->tables = static_cast<std::size_t>(n_tables);
   stencils->points = std::make_unique_for_overwrite<HermiteStencil[]>(n_tables * per_table);
+  // The products' stencils (compact_tables; the double ones serve the kernels' build only):
+  // tables that rings of node targets share keep their weights, read by every target of the
+  // ring; tables of one target (off-surface targets) keep only the points' places, 12 bytes.
+  const bool shared_tables = std::all_of(centres.begin(), centres.end(), [](const TableCentre& c) { return c.target < 0; });
+  if (o.compact_tables && !shared_tables)
+    stencils->compact = std::make_unique_for_overwrite<CompactHermiteStencil[]>(n_tables * per_table);
   const auto weights = std::make_unique_for_overwrite<double[]>(n_tables * per_table);
   // Directions of the grid nodes on the parameter sphere: a node is in a patch when
   // u_node . u_centre > cos(rho_1), which needs no trigonometry per (centre, node) pair.
@@ -223,6 +229,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       const std::vector<PatchPoint> patch = polar_patch(centre.theta, centre.phi, rho1, radial, n_varphi, delta);
       for (std::size_t q = 0; q < per_table; ++q) {
         stencils->points[b * per_table + q] = interp.stencil(patch[q].theta, patch[q].phi);
+        if (stencils->compact) stencils->compact[b * per_table + q] = interp.compact_stencil(patch[q].theta, patch[q].phi);
         weights[b * per_table + q] = patch[q].weight;
       }
     }
@@ -327,12 +334,12 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     });
   }
   if (!o.compact_tables) return;
-  // The stencils in single precision for the products (the kernels were stored so as they
-  // were computed); the double ones were for the build.
-  const std::size_t points = static_cast<std::size_t>(n_tables) * per_table;
-  stencils->compact = std::make_unique_for_overwrite<CompactHermiteStencil[]>(points);
+  if (shared_tables) {
+    const std::size_t points = static_cast<std::size_t>(n_tables) * per_table;
+    stencils->floats = std::make_unique_for_overwrite<FloatHermiteStencil[]>(points);
 #pragma omp parallel for schedule(static)
-  for (std::size_t q = 0; q < points; ++q) stencils->compact[q] = CompactHermiteStencil::of(stencils->points[q]);
+    for (std::size_t q = 0; q < points; ++q) stencils->floats[q] = FloatHermiteStencil::of(stencils->points[q]);
+  }
   stencils->points.reset();
 }
 
@@ -366,11 +373,15 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
                                 std::to_string(interp.n_theta() * interp.n_phi()) + " x 12)");
   }
   Eigen::MatrixXd out(num_targets(), 3);
-  const bool compact = stencils_->compact != nullptr;
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
-    out.row(t) = compact ? correction_at(t, stencils_->compact, patch_kf_.data(), density, data)
-                         : correction_at(t, stencils_->points, patch_k_.data(), density, data);
+    if (stencils_->floats) {
+      out.row(t) = correction_at(t, stencils_->floats, patch_kf_.data(), density, data);
+    } else if (stencils_->compact) {
+      out.row(t) = correction_at(t, stencils_->compact, patch_kf_.data(), density, data);
+    } else {
+      out.row(t) = correction_at(t, stencils_->points, patch_k_.data(), density, data);
+    }
   }
   return out;
 }
@@ -413,7 +424,8 @@ std::size_t CellQuadratureGeometry::memory_bytes() const {
 
 std::size_t LayerCorrection::PatchStencils::memory_bytes() const {
   const std::size_t n = tables * points_per_table;
-  return (points ? n * sizeof(HermiteStencil) : 0) + (compact ? n * sizeof(CompactHermiteStencil) : 0) +
+  return (points ? n * sizeof(HermiteStencil) : 0) + (floats ? n * sizeof(FloatHermiteStencil) : 0) +
+         (compact ? n * sizeof(CompactHermiteStencil) : 0) +
          heap_bytes(table) + heap_bytes(phi_shift);
 }
 

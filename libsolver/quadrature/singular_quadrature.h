@@ -37,9 +37,9 @@ struct QuadratureOptions {
   int angular_points = 0;            // points in the patch angle; 0: 2 x radial
   int spline_refinement = 2;         // Hermite grid (r N + 1) x 2 r N
   double near_factor = 1.0;          // nearly singular when d < near_factor sqrt(h)
-  // Keep the patch stencils' weights and the patch kernels in single precision between
-  // products (LayerCorrection): half their memory, the largest part of a step's. They are
-  // computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
+  // Keep the patch stencils (a point's offsets in its Hermite cell) and the patch kernels in
+  // single precision between products (LayerCorrection): a third of their memory, the largest
+  // part of a step's. They are computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
   // over a patch), an order below the Ewald and GMRES tolerances of a run (1e-6), measured in
   // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables...). The node
   // entries stay in double, so folding a node into the Ewald sum stays exact.
@@ -163,8 +163,11 @@ class LayerCorrection {
   // polar rule, points_per_table points, all in one array allocated without initialisation.
   struct PatchStencils {
     std::size_t points_per_table = 0, tables = 0;
-    // table b: [b, b + 1) * points_per_table, in one of the two precisions (compact_tables)
+    // table b: [b, b + 1) * points_per_table, in one of three forms: double (compact_tables
+    // off), single-precision weights (compact_tables, every table a ring's) or the points'
+    // places only (compact_tables, tables of single targets)
     std::unique_ptr<HermiteStencil[]> points;
+    std::unique_ptr<FloatHermiteStencil[]> floats;
     std::unique_ptr<CompactHermiteStencil[]> compact;
     std::vector<int> table, phi_shift;  // per target
     template <class Stencil>
