@@ -42,7 +42,9 @@ struct QuadratureOptions {
   // part of a step's. They are computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
   // over a patch), an order below the Ewald and GMRES tolerances of a run (1e-6), measured in
   // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables...). The node
-  // entries stay in double, so folding a node into the Ewald sum stays exact.
+  // entries stay in double; the regular nodes' eta is rounded to single precision, as the
+  // real-space sums keep it (real_space_sum.h PairShares), so folding a node into the Ewald sum
+  // stays exact.
   bool compact_tables = true;
 };
 int default_radial_points(int order);

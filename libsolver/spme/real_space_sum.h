@@ -15,11 +15,13 @@ namespace rbcflow {
 // offsets[t] .. offsets[t + 1] index sources (the caller's indices) and shares; a source may
 // appear more than once (the shares add). A pair is weighted at its nearest image only, which
 // must lie within the cutoff and within half the shortest box side (else it is not weighted).
-// Empty offsets: no weighted pair.
+// Empty offsets: no weighted pair. The shares are kept in single precision (8 bytes a pair
+// with the source against 12); the singular corrections' compact tables round their eta to
+// single precision for that reason (singular_quadrature.h).
 struct PairShares {
   std::vector<std::int64_t> offsets;
   std::vector<int> sources;
-  std::vector<double> shares;
+  std::vector<float> shares;
 };
 
 // Pairs closer than this are in a list of this cutoff at their nearest image, whatever the
