@@ -10,7 +10,7 @@
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 6 bytes each in the list and
 //                        16 kept; 8.3 P bytes of pair shares and 250 bytes of stencils per node;
-//                        one product's work arrays, 96 bytes per grid point
+//                        one product's work arrays, 72 bytes per grid point
 //   wall                 72.5 kB per wall node (operator, near field, preconditioner, recycled space)
 //   cells <-> wall       21.5 kB per wall node and 5.2 kB per cell node
 //   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program

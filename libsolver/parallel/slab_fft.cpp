@@ -29,8 +29,8 @@ void check_outside_parallel_region(const char* what) {
 }  // namespace
 
 struct SlabFft::Plans {
-  std::once_flag made3, made6, made_backward;
-  fftw_plan forward3 = nullptr, forward6 = nullptr, backward3 = nullptr;
+  std::once_flag made_forward, made_backward;
+  fftw_plan forward3 = nullptr, backward3 = nullptr;
   MPI_Comm comm = MPI_COMM_NULL;
   unsigned flags = FFTW_ESTIMATE;
   int threads = 1;
@@ -52,12 +52,9 @@ SlabFft::SlabFft(const Communicator& ranks, const std::array<int, 3>& size, unsi
   plans_->threads = threads;
   const ptrdiff_t n[3] = {size[0], size[1], size[2] / 2 + 1};  // the complex dimensions
   ptrdiff_t local_n0 = 0, local_0_start = 0, local_n1 = 0, local_1_start = 0;
-  for (int components : {3, 6}) {
-    const ptrdiff_t alloc = fftw_mpi_local_size_many_transposed(3, n, components, FFTW_MPI_DEFAULT_BLOCK,
-                                                                 FFTW_MPI_DEFAULT_BLOCK, plans_->comm, &local_n0,
-                                                                 &local_0_start, &local_n1, &local_1_start);
-    (components == 3 ? alloc3_ : alloc6_) = static_cast<std::size_t>(alloc);
-  }
+  alloc3_ = static_cast<std::size_t>(fftw_mpi_local_size_many_transposed(
+      3, n, 3, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, plans_->comm, &local_n0, &local_0_start, &local_n1,
+      &local_1_start));
   first_plane_ = static_cast<int>(local_0_start);
   planes_ = static_cast<int>(local_n0);
   first_row_ = static_cast<int>(local_1_start);
@@ -69,7 +66,7 @@ SlabFft::~SlabFft() {
   MPI_Finalized(&finalised);
   if (finalised) return;  // a grid outliving MPI (a static cache): its plans go with the process
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (fftw_plan p : {plans_->forward3, plans_->forward6, plans_->backward3})
+  for (fftw_plan p : {plans_->forward3, plans_->backward3})
     if (p) fftw_destroy_plan(p);
 }
 
@@ -80,7 +77,7 @@ std::size_t SlabFft::real_size(int components) const {
 
 std::size_t SlabFft::spectrum_size(int components) const {
   const std::size_t block = static_cast<std::size_t>(rows_) * size_[0] * (size_[2] / 2 + 1) * components;
-  return std::max(block, components == 3 ? alloc3_ : alloc6_);
+  return std::max(block, alloc3_ / 3 * components);
 }
 
 namespace {
@@ -108,14 +105,12 @@ fftw_plan plan_slab(const std::array<int, 3>& size, int components, bool forward
 
 void SlabFft::forward(int components, double* real, fftw_complex* spectrum) const {
   check_outside_parallel_region("a transform");
-  if (components != 3 && components != 6) throw std::invalid_argument("slab FFT: 3 or 6 components");
-  std::once_flag& made = components == 3 ? plans_->made3 : plans_->made6;
-  fftw_plan& p = components == 3 ? plans_->forward3 : plans_->forward6;
-  std::call_once(made, [&] {
-    p = plan_slab(size_, components, true, plans_->comm, plans_->flags, plans_->threads, real_size(components),
-                  spectrum_size(components));
+  if (components != 3) throw std::invalid_argument("slab FFT: 3 interleaved grids, not " + std::to_string(components));
+  std::call_once(plans_->made_forward, [&] {
+    plans_->forward3 = plan_slab(size_, 3, true, plans_->comm, plans_->flags, plans_->threads, real_size(3),
+                                 spectrum_size(3));
   });
-  fftw_mpi_execute_dft_r2c(p, real, spectrum);
+  fftw_mpi_execute_dft_r2c(plans_->forward3, real, spectrum);
 }
 
 void SlabFft::backward(fftw_complex* spectrum, double* real) const {

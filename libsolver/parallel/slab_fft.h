@@ -39,12 +39,12 @@ class SlabFft {
   int first_row() const { return first_row_; }
   int rows() const { return rows_; }
   int row_stride() const { return 2 * (size_[2] / 2 + 1); }  // R
-  // What a real array and a spectrum of `components` (3 or 6) must hold on this rank (FFTW's
-  // transposes may need more than the local block).
+  // What a real array and a spectrum of `components` interleaved grids must hold on this rank
+  // (FFTW's transposes may need more than the local block).
   std::size_t real_size(int components) const;      // doubles
   std::size_t spectrum_size(int components) const;  // complex numbers
 
-  // Forward transform of `components` (3 or 6) interleaved real slabs; `real` may be destroyed.
+  // Forward transform of `components` (3) interleaved real slabs; `real` may be destroyed.
   void forward(int components, double* real, fftw_complex* spectrum) const;
   // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
   void backward(fftw_complex* spectrum, double* real) const;
@@ -53,7 +53,7 @@ class SlabFft {
   struct Plans;
   std::array<int, 3> size_;
   int first_plane_ = 0, planes_ = 0, first_row_ = 0, rows_ = 0;
-  std::size_t alloc3_ = 0, alloc6_ = 0;  // complex numbers FFTW asks for, 3 and 6 components
+  std::size_t alloc3_ = 0;  // complex numbers FFTW asks for, 3 components
   std::unique_ptr<Plans> plans_;
 };
 

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr int kMaxGridSide = 2048;
-// Memory limits: grids of at most 2^26 points (up to 96 bytes each in work arrays, 6 GB) and
+// Memory limits: grids of at most 2^26 points (up to 72 bytes each in work arrays, 4.5 GB) and
 // at most 1e9 real-space pairs (6 bytes each in the neighbour list, 6 GB).
 constexpr double kMaxGridPoints = 67108864.0;
 constexpr double kMaxPairs = 1e9;

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "bspline.h"
 #include "geometry/sph/fftw_util.h"
@@ -84,7 +85,7 @@ void SpmeGrid::for_each_wavevector(F&& f) const {
 
 SpmeGrid::~SpmeGrid() {
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (const LazyPlan* p : {&forward3_, &forward6_, &backward3_})
+  for (const LazyPlan* p : {&forward3_, &backward3_})
     if (p->plan) fftw_destroy_plan(p->plan);
 }
 
@@ -120,8 +121,9 @@ std::size_t SpmeGrid::spectrum_size(int components) const {
 }
 
 void SpmeGrid::forward(int components, double* real, fftw_complex* spectrum) const {
+  if (components != 3) throw std::invalid_argument("SpmeGrid::forward: 3 interleaved grids, not " + std::to_string(components));
   if (slab_) return slab_->forward(components, real, spectrum);
-  fftw_execute_dft_r2c(components == 3 ? plan(forward3_, 3, true) : plan(forward6_, 6, true), real, spectrum);
+  fftw_execute_dft_r2c(plan(forward3_, 3, true), real, spectrum);
 }
 
 void SpmeGrid::backward(fftw_complex* spectrum, double* real) const {
@@ -148,28 +150,33 @@ void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
   });
 }
 
-void SpmeGrid::apply_stresslet(const fftw_complex* density, fftw_complex* velocity) const {
-  const Complex* D = reinterpret_cast<const Complex*>(density);
+void SpmeGrid::apply_stresslet(StressletHalf part, const fftw_complex* half, fftw_complex* velocity, bool add) const {
+  const Complex* D = reinterpret_cast<const Complex*>(half);
   Complex* u = reinterpret_cast<Complex*>(velocity);
+  const bool diagonal = part == StressletHalf::diagonal;
   for_each_wavevector([&](std::size_t m, int i, int j, int l) {
-    const Complex* d = D + 6 * m;
+    // The six components with the other half zero (read before `u` is written: it may alias).
+    const Complex zero(0.0, 0.0);
+    const Complex* h = D + 3 * m;
+    const Complex d[6] = {diagonal ? h[0] : zero, diagonal ? h[1] : zero, diagonal ? h[2] : zero,
+                          diagonal ? zero : h[0], diagonal ? zero : h[1], diagonal ? zero : h[2]};
     Complex* um = u + 3 * m;
     const double s = influence_[m];
-    if (s == 0.0) {
-      um[0] = um[1] = um[2] = 0.0;
-      return;
+    Complex v[3] = {zero, zero, zero};
+    if (s != 0.0) {
+      // T^F(-k) : D = -i s [2 D k + k tr D - 2 k (k.D.k)/k^2] (ewald_fourier_stresslet_apply).
+      const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+      const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
+      const Complex dk0 = d[0] * k0 + d[3] * k1 + d[4] * k2;
+      const Complex dk1 = d[3] * k0 + d[1] * k1 + d[5] * k2;
+      const Complex dk2 = d[4] * k0 + d[5] * k1 + d[2] * k2;
+      const Complex scalar = d[0] + d[1] + d[2] - 2.0 * (k0 * dk0 + k1 * dk1 + k2 * dk2) * inv_k2;
+      const auto times_minus_is = [s](Complex z) { return Complex(s * z.imag(), -s * z.real()); };
+      v[0] = times_minus_is(2.0 * dk0 + k0 * scalar);
+      v[1] = times_minus_is(2.0 * dk1 + k1 * scalar);
+      v[2] = times_minus_is(2.0 * dk2 + k2 * scalar);
     }
-    // T^F(-k) : D = -i s [2 D k + k tr D - 2 k (k.D.k)/k^2] (ewald_fourier_stresslet_apply).
-    const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
-    const double inv_k2 = 1.0 / (k0 * k0 + k1 * k1 + k2 * k2);
-    const Complex dk0 = d[0] * k0 + d[3] * k1 + d[4] * k2;
-    const Complex dk1 = d[3] * k0 + d[1] * k1 + d[5] * k2;
-    const Complex dk2 = d[4] * k0 + d[5] * k1 + d[2] * k2;
-    const Complex scalar = d[0] + d[1] + d[2] - 2.0 * (k0 * dk0 + k1 * dk1 + k2 * dk2) * inv_k2;
-    const auto times_minus_is = [s](Complex z) { return Complex(s * z.imag(), -s * z.real()); };
-    um[0] = times_minus_is(2.0 * dk0 + k0 * scalar);
-    um[1] = times_minus_is(2.0 * dk1 + k1 * scalar);
-    um[2] = times_minus_is(2.0 * dk2 + k2 * scalar);
+    for (int c = 0; c < 3; ++c) um[c] = add ? um[c] + v[c] : v[c];
   });
 }
 

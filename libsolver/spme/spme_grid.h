@@ -11,7 +11,7 @@
 //
 // Immutable after construction: one grid may serve several SpmePlans and threads. The FFTs
 // run with the OpenMP thread count current at construction. Each FFTW plan is made on its
-// first use (a Stokeslet grid never plans the 6-component transform), thread-safely.
+// first use, thread-safely.
 //
 // Split over ranks (a grid made with a Communicator of several ranks, in a build with FFTW's
 // MPI library: distributed()), each rank holds only its slab of the grid, planes
@@ -70,7 +70,7 @@ class SpmeGrid {
   std::size_t real_size(int components) const;      // doubles
   std::size_t spectrum_size(int components) const;  // complex numbers
 
-  // Forward transform of `components` (3 or 6) interleaved real grids (arrays from fftw_malloc);
+  // Forward transform of 3 interleaved real grids (arrays from fftw_malloc);
   // `real` may be destroyed.
   void forward(int components, double* real, fftw_complex* spectrum) const;
   // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
@@ -78,10 +78,12 @@ class SpmeGrid {
 
   // Single layer, in place on 3 interleaved spectra: u^ = (1/V) S^F(k) f^ / |B|^2.
   void apply_stokeslet(fftw_complex* spectrum) const;
-  // Double layer: 6 interleaved spectra of the symmetric density D = (q n^T + n q^T)/2 in the
-  // order xx, yy, zz, xy, xz, yz -> 3 interleaved velocity spectra, u^ = (1/V) T^F(-k) : D^ /
-  // |B|^2.
-  void apply_stresslet(const fftw_complex* density, fftw_complex* velocity) const;
+  // Double layer, u^ = (1/V) T^F(-k) : D^ / |B|^2 for the symmetric density D = (q n^T + n
+  // q^T)/2, linear in D and so taken a half at a time: 3 interleaved spectra of D's diagonal
+  // (xx, yy, zz) or of its off-diagonal part (xy, xz, yz) -> 3 interleaved velocity spectra,
+  // written (add false) or added (add true). `velocity` may be `half` itself.
+  enum class StressletHalf { diagonal, off_diagonal };
+  void apply_stresslet(StressletHalf part, const fftw_complex* half, fftw_complex* velocity, bool add) const;
 
  private:
   PeriodicBox box_;
@@ -100,7 +102,7 @@ class SpmeGrid {
 
   unsigned flags_;
   int threads_;
-  mutable LazyPlan forward3_, forward6_, backward3_;
+  mutable LazyPlan forward3_, backward3_;
   std::unique_ptr<SlabFft> slab_;  // distributed(): this rank's slab's transforms
 };
 

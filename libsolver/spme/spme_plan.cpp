@@ -92,35 +92,43 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(q, n_sources(), "the double-layer density");
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
-  // Each array is freed once its successor holds the data: at most the six real grids and
-  // their spectra live together (96 bytes a grid point, where holding the real grids and the
-  // velocity's spectra throughout took 120): the largest memory of a product.
-  std::vector<double> density(6 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<double> real(grid_->real_size(6));
-#pragma omp parallel for schedule(static)
-  for (int s = 0; s < n_sources(); ++s) {
-    // Symmetric part of q n^T (T is symmetric): xx, yy, zz, xy, xz, yz.
-    double* d = &density[6 * static_cast<std::size_t>(s)];
-    const double q0 = q(s, 0), q1 = q(s, 1), q2 = q(s, 2);
-    const double n0 = normals(s, 0), n1 = normals(s, 1), n2 = normals(s, 2);
-    d[0] = q0 * n0;
-    d[1] = q1 * n1;
-    d[2] = q2 * n2;
-    d[3] = 0.5 * (q0 * n1 + q1 * n0);
-    d[4] = 0.5 * (q0 * n2 + q2 * n0);
-    d[5] = 0.5 * (q1 * n2 + q2 * n1);
-  }
-  sources_->spread<6>(density.data(), real.data());
-  std::vector<double>().swap(density);
-  timings_.spreading = seconds_since(t);
-  FftwBuffer<fftw_complex> spectrum(grid_->spectrum_size(6));
-  grid_->forward(6, real.data(), spectrum.data());
-  real = FftwBuffer<double>();  // freed (the moved-from temporary takes the grids)
-  timings_.fft = seconds_since(t);
+  // The symmetric part of q n^T (T is symmetric) a half at a time, the diagonal (xx, yy, zz)
+  // then xy, xz, yz: each half spread, transformed and its velocity spectrum added. At most the
+  // velocity's spectra, one half's spectra and its real grids live together, 72 bytes a grid
+  // point (all six components at once took 96): the largest memory of a product.
+  timings_ = {};
+  std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
   FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
-  grid_->apply_stresslet(spectrum.data(), velocity.data());
-  spectrum = FftwBuffer<fftw_complex>();
-  timings_.influence = seconds_since(t);
+  for (const auto part : {SpmeGrid::StressletHalf::diagonal, SpmeGrid::StressletHalf::off_diagonal}) {
+    const bool diagonal = part == SpmeGrid::StressletHalf::diagonal;
+#pragma omp parallel for schedule(static)
+    for (int s = 0; s < n_sources(); ++s) {
+      double* d = &density[3 * static_cast<std::size_t>(s)];
+      const double q0 = q(s, 0), q1 = q(s, 1), q2 = q(s, 2);
+      const double n0 = normals(s, 0), n1 = normals(s, 1), n2 = normals(s, 2);
+      if (diagonal) {
+        d[0] = q0 * n0;
+        d[1] = q1 * n1;
+        d[2] = q2 * n2;
+      } else {
+        d[0] = 0.5 * (q0 * n1 + q1 * n0);
+        d[1] = 0.5 * (q0 * n2 + q2 * n0);
+        d[2] = 0.5 * (q1 * n2 + q2 * n1);
+      }
+    }
+    FftwBuffer<fftw_complex> spectrum(diagonal ? 0 : grid_->spectrum_size(3));  // the diagonal's: `velocity`
+    fftw_complex* half = diagonal ? velocity.data() : spectrum.data();
+    {
+      FftwBuffer<double> real(grid_->real_size(3));
+      sources_->spread<3>(density.data(), real.data());
+      timings_.spreading += seconds_since(t);
+      grid_->forward(3, real.data(), half);
+      timings_.fft += seconds_since(t);
+    }
+    grid_->apply_stresslet(part, half, velocity.data(), !diagonal);
+    timings_.influence += seconds_since(t);
+  }
+  std::vector<double>().swap(density);
   FftwBuffer<double> velocity_grid(grid_->real_size(3));
   return transform_and_interpolate(velocity, velocity_grid);
 }
@@ -140,12 +148,13 @@ std::size_t SpmePlan::stencil_bytes() const {
 }
 
 std::size_t SpmePlan::work_bytes(int components) const {
-  const std::size_t density = components * static_cast<std::size_t>(n_sources()) * sizeof(double);
-  const std::size_t real = grid_->real_size(components) * sizeof(double);
-  const std::size_t spectra = grid_->spectrum_size(components) * sizeof(fftw_complex);
-  // The single layer holds all three for its product; the double layer its six real grids
-  // with their densities, then with their spectra (double_layer()).
-  return components == 6 ? real + std::max(density, spectra) : density + real + spectra;
+  // The single layer holds its density, real grids and spectra (3 components each) for its
+  // product; the double layer the same for one half of its density and the velocity's spectra
+  // besides (double_layer()).
+  const std::size_t spectra = grid_->spectrum_size(3) * sizeof(fftw_complex);
+  const std::size_t three = 3 * static_cast<std::size_t>(n_sources()) * sizeof(double) +
+                            grid_->real_size(3) * sizeof(double) + spectra;
+  return components == 6 ? three + spectra : three;
 }
 
 }  // namespace rbcflow
