@@ -75,13 +75,14 @@ TEST(RealSpaceSum, SharedPairsCountWithWeightOneMinusShare) {
         Eigen::Vector3d r = (xs.row(s) - xt.row(t)).transpose();
         r -= (L.array() * (r.array() / L.array()).round()).matrix();
         if (r.norm() >= radius) continue;
-        const double share = 0.1 + 0.8 * ((s * 7 + t) % 10) / 10.0;
+        // Shares in sixteenths and thirty-seconds: exact in the single precision PairShares keeps.
+        const double share = 0.125 + 0.75 * ((s * 7 + t) % 8) / 8.0;
         by_target[t].push_back({s, share});
-        if (by_target[t].size() == 1) by_target[t].push_back({s, 0.05});  // named twice: 0.05 more
+        if (by_target[t].size() == 1) by_target[t].push_back({s, 0.0625});  // named twice: 0.0625 more
       }
       for (const auto& [s, share] : by_target[t]) {
         shares.sources.push_back(s);
-        shares.shares.push_back(share);
+        shares.shares.push_back(static_cast<float>(share));
       }
       shares.offsets.push_back(static_cast<std::int64_t>(shares.sources.size()));
     }
