@@ -74,7 +74,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
       const auto& K = e->choice.parameters.grid;
       // The plans keep them only within their bound (each rank's plan holds its sources' pairs).
       m.kept_coefficients = pairs / ranks <= static_cast<double>(s.options.domain.max_kept_pairs) ? 16 * pairs : 0.0;
-      const double split_bytes = 6 * pairs + m.kept_coefficients + nodes * (8.3 * P + 250);
+      const double split_bytes = 6 * pairs + m.kept_coefficients + nodes * (5.5 * P + 250);
       const double work_arrays = 72.0 * K[0] * K[1] * K[2];
       const double split = split_bytes + (slabs ? kSplitEwaldWorkArrays * work_arrays : 0.0);
       m.parts.push_back({"cells' Ewald sum", split_bytes + work_arrays, split / (split_bytes + work_arrays)});
@@ -83,7 +83,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
   if (wall_nodes > 0) {
     m.parts.push_back({"wall", 72.5e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
     if (cells > 0) {
-      m.parts.push_back({"cells <-> wall", 21.5e3 * wall_nodes + 5.2e3 * cells * s.grids->n_grid->grid().size(),
+      m.parts.push_back({"cells <-> wall", 17.0e3 * wall_nodes + 1.7e3 * cells * s.grids->n_grid->grid().size(),
                          kSplitCoupling});
     }
   }

@@ -9,14 +9,16 @@
 //                        Q (12 + 24) bytes (stencil, kernel) + 2.25 kB of node entries
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 6 bytes each in the list and
-//                        16 kept; 8.3 P bytes of pair shares and 250 bytes of stencils per node;
+//                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
 //                        one product's work arrays, 72 bytes per grid point
 //   wall                 72.5 kB per wall node (operator, near field, preconditioner, recycled space)
-//   cells <-> wall       21.5 kB per wall node and 5.2 kB per cell node
+//   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair
+//                        coefficients: each of these operators is applied once a step)
 //   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program
 // with P = 2N^2 nodes per cell, Q patch points per target, H the tube hematocrit. The single
 // layer holds nothing past its build (cell_layers.h). Calibrated at 303b38c on bench_step's
-// tube27 (N = 16, lambda = 5, Ewald 1e-6: predicted and measured peak in docs/performance.md);
+// tube27 (N = 16, lambda = 5, Ewald 1e-6: predicted and measured peak in docs/performance.md),
+// the coupling on tube27 and wide125 together (its two constants; wide512 then within 4%);
 // the parts of other cases scale as above.
 //
 // On P ranks (mpirun) each rank holds its own cells' share of what is split and all of what is

@@ -34,9 +34,12 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
                              domain.ranks);
       xi = grid->parameters().xi;
       if (owned.empty() && !grid->distributed()) return nullptr;
+      // No kept pair coefficients: a step applies each layer here once (the single layer in
+      // the build, the double layer in (12)), but for the first step's start sweeps; kept, they
+      // would be filled once and held at the step's peak for nothing.
       auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_,
                                            SourceRows{owned.begin * np, owned.end * np});
-      p->keep_pairs_up_to(domain.max_kept_pairs);
+      p->keep_pairs_up_to(0);
       return p;
     };
     single_plan_ = plan(EwaldKernel::stokeslet, xi_single);
@@ -65,7 +68,6 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     Eigen::MatrixXd corrections = Eigen::MatrixXd::Zero(points_.rows(), 3);
     for (int c = owned.begin; c < owned.end; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) corrections.row(near_[c].rows[k]) += near_single[c].row(k);
-    if (single_plan_) single_plan_->keep_pairs_up_to(0);  // one product: nothing to keep
     single_layer_ = regular_single_layer(*single_density_) + corrections;
     domain.ranks.sum(*single_layer_);
     single_plan_.reset();

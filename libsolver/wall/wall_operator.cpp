@@ -61,6 +61,9 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, elements_->points.rows(),
                             targets_.rows(), {}, ranks_),
                  wrapped(elements_->points, box), wrapped(targets_, box), rows);
+  // Applied once a step (the wall's velocity at the cells), but in the first step's start
+  // sweeps: kept pair coefficients would be filled once and held for nothing.
+  ewald_->keep_pairs_up_to(0);
 }
 
 PointField WallOperator::apply(const PointField& f) {

@@ -45,7 +45,8 @@ class WallOperator {
   // near field and real-space sum at its `rows` of the targets, the smooth part at every
   // target on its slab of the grid (chosen for all the targets; split over `ranks` where the
   // build can, else at its rows only). Products give every target's row; the ranks' sum is the
-  // whole operator's product.
+  // whole operator's product. Each product computes its real-space pairs (none are kept: a
+  // step applies it once).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks);
 
