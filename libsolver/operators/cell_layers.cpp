@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -98,6 +99,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     return out;
   };
   if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nc * np, 3);
+  std::optional<Eigen::MatrixXd> single_regular;  // the regular (Ewald) part of the single layer
   ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
   for (int c = owned_.begin; c < owned_.end; ++c) {
@@ -148,21 +150,36 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, folded_shares(layer))
                         : std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, nodes_.x, rows, folded_shares(layer));
     };
+    // Each plan holds its layer's folded nodes as its pair shares once built: they are freed
+    // then. The step's single layer is computed and its plan freed before the double layer's
+    // plan is built, so that the two plans, their lists and shares never live together.
+    const auto release_folded = [&](Layer layer) {
+      for (int c = owned_.begin; c < owned_.end; ++c) {
+        LayerCorrection* self = (layer == Layer::single ? self_single_ : self_double_)[c].get();
+        LayerCorrection* near = (layer == Layer::single ? near_[c].single : near_[c].double_).get();
+        for (LayerCorrection* k : {self, near})
+          if (k) k->release_folded();
+      }
+    };
     single_plan_ = plan(single_grid, Layer::single);
     // Applied once when the single layer is computed here: nothing to keep.
     single_plan_->keep_pairs_up_to(single_density_ ? 0 : domain_.max_kept_pairs);
+    release_folded(Layer::single);
+    plans_timer.stop();
+    if (single_density_) {
+      single_regular = regular_single_layer(*single_density_);
+      single_plan_.reset();
+    }
     if (with_double_layer) {
+      ScopedTimer double_timer(timings_.geometry);
       double_plan_ = plan(double_grid, Layer::double_);
       double_plan_->keep_pairs_up_to(domain_.max_kept_pairs);
-    }
-    // The plans hold the folded nodes now, as their pair shares.
-    for (int c = owned_.begin; c < owned_.end; ++c) {
-      for (LayerCorrection* k : {self_single_[c].get(), self_double_[c].get(), near_[c].single.get(), near_[c].double_.get()})
-        if (k) k->release_folded();
+      release_folded(Layer::double_);
     }
   }
   if (single_density_) {
-    single_layer_ = regular_single_layer(*single_density_) + single_corrections;
+    if (!single_regular) single_regular = regular_single_layer(*single_density_);  // free space, or no plan here
+    single_layer_ = *single_regular + single_corrections;
     domain_.ranks.sum(*single_layer_);
     single_plan_.reset();
     for (int c = owned_.begin; c < owned_.end; ++c) {
