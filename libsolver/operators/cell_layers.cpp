@@ -254,7 +254,7 @@ PairShares CellLayers::folded_shares(Layer layer) const {
   for_each_target([&](int c, int row, std::span<const PatchNode> nodes) {
     for (const PatchNode& e : nodes) {
       shares.sources[next[row]] = c * np + e.node - first;
-      shares.shares[next[row]++] = static_cast<float>(e.eta);
+      shares.shares[next[row]++] = e.eta;
     }
   });
   return shares;

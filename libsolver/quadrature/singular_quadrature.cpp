@@ -218,13 +218,8 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       }
       batch_atan2(sin_rho.data(), cos_rho.data(), rho.data(), n);
       batch_patch_mask(rho.data(), rho1, eta.data(), n);
-      // With compact tables the nodes' eta is rounded to single precision, as the real-space
-      // sums keep it (PairShares): folding a node there or removing eta K w here then stay the
-      // same to the last bits.
-      if (o.compact_tables)
-        for (std::size_t k = 0; k < n; ++k) eta[k] = static_cast<float>(eta[k]);
       for (std::size_t k = 0; k < n; ++k)
-        if (rho[k] < rho1) listed[patch_node_count[b]++] = {candidate[k], eta[k]};
+        if (rho[k] < rho1) listed[patch_node_count[b]++] = {candidate[k], static_cast<float>(eta[k])};
       double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
       if (centre.target >= 0 && targets[centre.target].distance > 0) {
         Eigen::Vector3d xc, jc;
@@ -316,7 +311,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       kept[i] = corrections[i]->node_offsets_[t];
       folded[i] = corrections[i]->folded_offsets_[t];
     }
-    for_each_patch_node(t, [&](int p, double eta) {
+    for_each_patch_node(t, [&](int p, float eta) {
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
       const double distance = r.norm();
       const Eigen::Vector3d m = nodes.weight[p] * Eigen::Vector3d(nodes.normal.row(p));

@@ -42,9 +42,7 @@ struct QuadratureOptions {
   // part of a step's. They are computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
   // over a patch), an order below the Ewald and GMRES tolerances of a run (1e-6), measured in
   // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables...). The node
-  // entries stay in double; the regular nodes' eta is rounded to single precision, as the
-  // real-space sums keep it (real_space_sum.h PairShares), so folding a node into the Ewald sum
-  // stays exact.
+  // entries stay in double.
   bool compact_tables = true;
 };
 int default_radial_points(int order);
@@ -102,9 +100,12 @@ SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids);
 
 // A node of the regular rule inside a target's patch, with its partition-of-unity weight eta:
 // the share of that node's regular term which the patch integral I_1 replaces.
+// eta is kept in single precision (8 bytes a node): every correction folds or removes this same
+// rounded share, as the real-space sums keep it (real_space_sum.h PairShares), so folding a node
+// stays exact; the rounding (~6e-8) is far below the patch rule's error.
 struct PatchNode {
   int node;
-  double eta;
+  float eta;
 };
 
 class LayerCorrection {

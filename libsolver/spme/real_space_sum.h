@@ -16,8 +16,8 @@ namespace rbcflow {
 // appear more than once (the shares add). A pair is weighted at its nearest image only, which
 // must lie within the cutoff and within half the shortest box side (else it is not weighted).
 // Empty offsets: no weighted pair. The shares are kept in single precision (8 bytes a pair
-// with the source against 12); the singular corrections' compact tables round their eta to
-// single precision for that reason (singular_quadrature.h).
+// with the source against 12), as the singular corrections keep their eta (singular_quadrature.h
+// PatchNode).
 struct PairShares {
   std::vector<std::int64_t> offsets;
   std::vector<int> sources;

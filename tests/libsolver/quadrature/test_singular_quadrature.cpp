@@ -225,7 +225,7 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> periodic_layers(const std::shared_pt
     for (int t = 0; t < n + k; ++t) {
       for (const PatchNode& e : t < n ? s.folded(t) : c.folded(t - n)) {
         p.sources.push_back(e.node);
-        p.shares.push_back(static_cast<float>(e.eta));
+        p.shares.push_back(e.eta);
       }
       p.offsets.push_back(static_cast<std::int64_t>(p.sources.size()));
     }
