@@ -84,18 +84,22 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     }
   }
   geometry_timer.stop();
+  // The single layer of a given density is applied once, as its corrections are built: they
+  // remove their patch nodes' shares themselves (node entries, freed with the tables) instead
+  // of folding them into the plan's pair shares, which would be held through every cell's
+  // build (8 bytes a folded node, as many as the double layer's).
+  if (single_density_) fold_radius[0] = 0.0;
   self_single_.resize(nc);
   self_double_.resize(nc);
   near_.resize(nc);
-  // With a single-layer density, each single-layer correction is applied as it is built and its
-  // tables freed (its folded nodes stay for the plan's pair shares): the self rows of a cell and
-  // the rows of its near targets, added up after the loops.
+  // With a single-layer density, each single-layer correction is applied as it is built and
+  // freed: the self rows of a cell and the rows of its near targets, added up after the loops.
   Eigen::MatrixXd single_corrections;
   std::vector<Eigen::MatrixXd> near_single(nc);
-  const auto apply_now = [&](int c, LayerCorrection& correction) {
+  const auto apply_now = [&](int c, std::unique_ptr<LayerCorrection>& correction) {
     const Eigen::MatrixXd block = cell_block(*single_density_, c);
-    Eigen::MatrixXd out = correction.apply(block, cells_[c]->patch_data(block));
-    correction.release_tables();
+    Eigen::MatrixXd out = correction->apply(block, cells_[c]->patch_data(block));
+    correction.reset();
     return out;
   };
   if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nc * np, 3);
@@ -111,7 +115,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets,
                                                           fold_radius[0]);
     }
-    if (single_density_) single_corrections.middleRows(c * np, np) = apply_now(c, *self_single_[c]);
+    if (single_density_) single_corrections.middleRows(c * np, np) = apply_now(c, self_single_[c]);
   }
   self_timer.stop();
   ScopedTimer near_timer(timings_.near);
@@ -133,7 +137,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single},
                                                           near_targets, fold_radius[0]);
     }
-    if (single_density_) near_single[c] = apply_now(c, *near_[c].single);
+    if (single_density_) near_single[c] = apply_now(c, near_[c].single);
   }
   near_timer.stop();
   if (single_density_) {
@@ -147,24 +151,17 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     // cells' nodes are the real-space sources, every node a target (ewald_plan.h).
     auto plan = [&](std::shared_ptr<const SpmeGrid> grid, Layer layer) {
       const SourceRows rows{owned_.begin * np, owned_.end * np};
-      return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, folded_shares(layer))
-                        : std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, nodes_.x, rows, folded_shares(layer));
+      // The single layer of a given density folded nothing (its corrections are gone).
+      PairShares shares = layer == Layer::single && single_density_ ? PairShares{} : take_folded_shares(layer);
+      return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, std::move(shares))
+                        : std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, nodes_.x, rows, std::move(shares));
     };
-    // Each plan holds its layer's folded nodes as its pair shares once built: they are freed
-    // then. The step's single layer is computed and its plan freed before the double layer's
-    // plan is built, so that the two plans, their lists and shares never live together.
-    const auto release_folded = [&](Layer layer) {
-      for (int c = owned_.begin; c < owned_.end; ++c) {
-        LayerCorrection* self = (layer == Layer::single ? self_single_ : self_double_)[c].get();
-        LayerCorrection* near = (layer == Layer::single ? near_[c].single : near_[c].double_).get();
-        for (LayerCorrection* k : {self, near})
-          if (k) k->release_folded();
-      }
-    };
+    // Each plan takes its layer's folded nodes as its pair shares. The step's single layer is
+    // computed and its plan freed before the double layer's plan is built, so that the two
+    // plans, their lists and shares never live together.
     single_plan_ = plan(single_grid, Layer::single);
     // Applied once when the single layer is computed here: nothing to keep.
     single_plan_->keep_pairs_up_to(single_density_ ? 0 : domain_.max_kept_pairs);
-    release_folded(Layer::single);
     plans_timer.stop();
     if (single_density_) {
       single_regular = regular_single_layer(*single_density_);
@@ -174,7 +171,6 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       ScopedTimer double_timer(timings_.geometry);
       double_plan_ = plan(double_grid, Layer::double_);
       double_plan_->keep_pairs_up_to(domain_.max_kept_pairs);
-      release_folded(Layer::double_);
     }
   }
   if (single_density_) {
@@ -182,10 +178,6 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     single_layer_ = *single_regular + single_corrections;
     domain_.ranks.sum(*single_layer_);
     single_plan_.reset();
-    for (int c = owned_.begin; c < owned_.end; ++c) {
-      self_single_[c].reset();
-      near_[c].single.reset();
-    }
   }
 }
 
@@ -229,24 +221,28 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
                            coincident_sources(nodes_.size(), first, n));
 }
 
-PairShares CellLayers::folded_shares(Layer layer) const {
+PairShares CellLayers::take_folded_shares(Layer layer) {
   const int np = nodes_per_cell();
-  // Calls f(cell, target row, patch nodes) for every target of the layer's corrections.
-  // Sources are numbered within the owned block (the plans' sources).
+  // Calls f(cell, target row, patch nodes) for every target of the layer's corrections, and
+  // then done(correction) for each correction. Sources are numbered within the owned block
+  // (the plans' sources).
   const int first = owned_.begin * np;
-  auto for_each_target = [&](auto&& f) {
+  auto for_each_target = [&](auto&& f, auto&& done) {
     for (int c = owned_.begin; c < owned_.end; ++c) {
-      const LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
+      LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
       for (int t = 0; t < self.num_targets(); ++t) f(c, c * np + t, self.folded(t));
-      const NearCorrection& n = near_[c];
-      const LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
+      done(self);
+      NearCorrection& n = near_[c];
+      LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
       if (!near) continue;
       for (int k = 0; k < near->num_targets(); ++k) f(c, n.rows[k], near->folded(k));
+      done(*near);
     }
   };
   PairShares shares;
   shares.offsets.assign(static_cast<std::size_t>(nodes_.size()) + 1, 0);
-  for_each_target([&](int, int row, std::span<const PatchNode> nodes) { shares.offsets[row + 1] += nodes.size(); });
+  for_each_target([&](int, int row, std::span<const PatchNode> nodes) { shares.offsets[row + 1] += nodes.size(); },
+                  [](LayerCorrection&) {});
   for (std::size_t r = 1; r < shares.offsets.size(); ++r) shares.offsets[r] += shares.offsets[r - 1];
   shares.sources.resize(shares.offsets.back());
   shares.shares.resize(shares.offsets.back());
@@ -256,7 +252,7 @@ PairShares CellLayers::folded_shares(Layer layer) const {
       shares.sources[next[row]] = c * np + e.node - first;
       shares.shares[next[row]++] = e.eta;
     }
-  });
+  }, [](LayerCorrection& k) { k.release_folded(); });
   return shares;
 }
 

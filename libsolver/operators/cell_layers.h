@@ -110,8 +110,9 @@ class CellLayers {
     return stacked.middleRows(owned_.begin * nodes_per_cell(), owned_.size() * nodes_per_cell());
   }
   bool owns_all() const { return owned_.size() == num_cells(); }
-  // The patch nodes the layer's corrections left to the real-space sum, by target row.
-  PairShares folded_shares(Layer layer) const;
+  // The patch nodes the layer's corrections left to the real-space sum, by target row; each
+  // correction's folded nodes are freed once taken.
+  PairShares take_folded_shares(Layer layer);
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
 
   std::shared_ptr<const CellGrids> grids_;

@@ -355,17 +355,7 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const SHC
   return apply(density, cell_->interpolator().node_data(c));
 }
 
-void LayerCorrection::release_tables() {
-  stencils_.reset();
-  std::vector<PackedKernel>().swap(patch_k_);
-  std::vector<CompactKernel>().swap(patch_kf_);
-  std::vector<NodeEntry>().swap(nodes_);
-  std::vector<std::int64_t>().swap(patch_offsets_);
-  std::vector<std::int64_t>().swap(node_offsets_);
-}
-
 Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const HermiteData& data) const {
-  if (!stencils_) throw std::logic_error("LayerCorrection::apply: its tables were released");
   const HermiteInterpolator& interp = cell_->interpolator();
   if (density.rows() != cell_->grids().n_grid->grid().size() || density.cols() != 3 ||
       data.rows() != static_cast<Eigen::Index>(interp.n_theta()) * interp.n_phi() || data.cols() != 12) {

@@ -130,9 +130,6 @@ class LayerCorrection {
     if (folded_offsets_.empty()) return {};
     return {folded_.data() + folded_offsets_[t], static_cast<std::size_t>(folded_offsets_[t + 1] - folded_offsets_[t])};
   }
-  // Frees everything apply() reads, for a correction applied once (to the one density it is
-  // needed for) while its folded nodes are still to be taken; apply() then throws.
-  void release_tables();
   // Frees the folded nodes once the caller has taken them (its real-space sum's pair shares).
   void release_folded() {
     std::vector<PatchNode>().swap(folded_);
