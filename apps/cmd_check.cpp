@@ -222,6 +222,9 @@ void print_memory(const Scenario& s) {
                 s.keeps_pair_coefficients ? "kept between products" : "recomputed in every product to fit the budget",
                 m.kept_coefficients / m.ranks / kGiB);
   }
+  std::printf("         freed memory %s\n", s.reuses_freed_memory
+                                                 ? "kept for the next steps (faster)"
+                                                 : "returned to the system: the estimate is above 3/4 of the budget");
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include "cli.h"
 #include "io/input_error.h"
 #include "libsolver/parallel/communicator.h"
-#include "libsolver/stepper/step_memory.h"
 
 namespace {
 
@@ -56,7 +55,6 @@ int main(int argc, char** argv) {
     return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
-  rbcflow::reuse_freed_memory();  // time steps reuse the pages of the steps before
   Args args(command, std::vector<std::string>(argv + 2, argv + argc));
   try {
     if (rbcflow::Communicator::world().size() > 1 && command != "run" && command != "info")

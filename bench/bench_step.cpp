@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "libsolver/parallel/communicator.h"
-#include "libsolver/stepper/step_memory.h"
 #include "step_cases.h"
 
 using namespace rbcflow;
@@ -73,7 +72,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: bench_step single|minicase|tubeK|wideK [--steps K]  (K cells in the D = 6 or D = 12 tube, e.g. tube27)\n");
     return 2;
   }
-  reuse_freed_memory();  // as rbcflow does
   const std::string name = argv[1];
   int steps = 5;
   for (int i = 2; i + 1 < argc; i += 2) {

@@ -17,6 +17,11 @@ namespace rbcflow {
 namespace {
 
 constexpr double kPeakFactor = 1.3;
+// Up to this fraction of the budget a run's heaps keep what its steps free, for the next steps
+// (libsolver/stepper/step_memory.h); above it they return it. wide512 (0.69 of this machine's
+// 23.5 GiB) ran with its heaps kept, wide1000 (0.96) did not (killed for memory in its first
+// step's build; it passed the build with glibc's default).
+constexpr double kReuseFreedMemory = 0.75;
 constexpr double kProgramBytes = 60e6;
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
@@ -105,11 +110,13 @@ void apply_memory_budget(Scenario& s, RankLayout layout) {
   s.memory_budget = s.options.domain.ranks.min(memory_budget(s.c, layout.per_machine));
   s.ranks_per_machine = layout.per_machine;
   const double total = s.memory.total();
+  s.reuses_freed_memory = total <= kReuseFreedMemory * s.memory_budget;
   if (total <= s.memory_budget) return;
   const double without = total - kPeakFactor * s.memory.kept_coefficients / layout.ranks;
   if (s.memory.kept_coefficients > 0 && without <= s.memory_budget) {
     s.options.domain.max_kept_pairs = 0;
     s.keeps_pair_coefficients = false;
+    s.reuses_freed_memory = false;
     return;
   }
   std::string parts;

@@ -67,7 +67,9 @@ double memory_budget(const Case& c, int ranks_per_machine = 1);
 // rank): keeps the Ewald pair coefficients when everything fits with them, drops them
 // (products recompute them: slower, no less accurate) when only then it fits, and otherwise
 // throws CaseError naming solver.memory_gib with the estimate and what to change. `layout`:
-// the run's ranks and those on this rank's machine. In a run on several ranks
+// the run's ranks and those on this rank's machine. A run whose estimate is above 3/4 of its
+// budget has its freed memory returned to the system instead of kept for the next steps
+// (s.reuses_freed_memory; libsolver/stepper/step_memory.h). In a run on several ranks
 // (s.options.domain.ranks) every rank takes the decision of the smallest of the ranks'
 // budgets, so that all hold the same operators.
 void apply_memory_budget(Scenario& s, RankLayout layout);

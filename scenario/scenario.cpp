@@ -10,6 +10,7 @@
 #include "geometry/contact/wall_distance.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/operators/cell_layers.h"
+#include "libsolver/stepper/step_memory.h"
 #include "scenario/cell_layout.h"
 #include "scenario/derived.h"
 #include "scenario/physical_units.h"
@@ -171,6 +172,11 @@ Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
 }
 
 std::unique_ptr<CellStepper> make_stepper(Scenario& s) {
+  if (s.reuses_freed_memory) {
+    reuse_freed_memory();
+  } else {
+    return_freed_memory();
+  }
   if (s.vessel) s.options.wall = std::make_shared<const WallElements>(*s.vessel);
   return std::make_unique<CellStepper>(std::move(s.cells), s.grids, s.options);
 }

@@ -44,6 +44,7 @@ struct Scenario {
   double memory_budget = 0;                // bytes, for each rank
   int ranks_per_machine = 1;               // that share the machine's memory
   bool keeps_pair_coefficients = true;     // false: dropped to fit the budget
+  bool reuses_freed_memory = true;         // false: close to the budget (memory_budget.h)
 };
 
 // Throws CaseError (exit 2) naming the key for everything that shows only once the vessel is

@@ -11,4 +11,13 @@ bool reuse_freed_memory() {
   return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, -1) == 1;
 }
 
+bool return_freed_memory() {
+  // Mapping allowed again (glibc's default count), a fixed threshold (the default one rises to
+  // the size of each mapped block freed, up to 32 MB, after which such blocks stay in the heap),
+  // and the heap's top trimmed past 1 MB.
+  constexpr int kMapped = 256 << 10, kTrim = 1 << 20, kMaxMaps = 65536;
+  return mallopt(M_MMAP_MAX, kMaxMaps) == 1 && mallopt(M_MMAP_THRESHOLD, kMapped) == 1 &&
+         mallopt(M_TRIM_THRESHOLD, kTrim) == 1;
+}
+
 }  // namespace rbcflow

@@ -161,6 +161,26 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   EXPECT_NE(e.find("use fewer cells"), std::string::npos) << e;
 }
 
+// A run far below its budget keeps what its steps free for the next steps; one above 3/4 of it
+// returns it (libsolver/stepper/step_memory.h), with or without the kept pair coefficients.
+TEST(Scenario, FreedMemoryIsKeptOnlyFarBelowTheBudget) {
+  const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
+                           "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = 0.3\n";
+  constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+  const double total = prepare_scenario(parse_case(tube, "m.toml")).memory.total();
+  const auto with_budget = [&](double fraction) {
+    return prepare_scenario(parse_case(tube + "[solver]\nmemory_gib = " + std::to_string(total / fraction / gib) + "\n",
+                                       "m.toml"));
+  };
+  EXPECT_TRUE(with_budget(0.7).reuses_freed_memory);
+  const Scenario close = with_budget(0.8);
+  EXPECT_FALSE(close.reuses_freed_memory);
+  EXPECT_TRUE(close.keeps_pair_coefficients);
+  const Scenario over = with_budget(1.02);  // fits only without the kept coefficients
+  EXPECT_FALSE(over.keeps_pair_coefficients);
+  EXPECT_FALSE(over.reuses_freed_memory);
+}
+
 // On P ranks (rbcflow check --ranks P) each rank holds its share of the split parts and all of
 // the repeated ones, and the ranks on one machine share its memory: a budget that one process
 // fits can be too small for two ranks on the same machine, and the refusal says per rank.
