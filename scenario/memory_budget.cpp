@@ -18,9 +18,9 @@ namespace {
 
 constexpr double kPeakFactor = 1.3;
 // Up to this fraction of the budget a run's heaps keep what its steps free, for the next steps
-// (libsolver/stepper/step_memory.h); above it they return it. wide512 (0.69 of this machine's
-// 23.5 GiB) ran with its heaps kept, wide1000 (0.96) did not (killed for memory in its first
-// step's build; it passed the build with glibc's default).
+// (libsolver/stepper/step_memory.h); above it they return it. bench_step wide512 (0.69 of a
+// 23.5 GiB machine) ran with its heaps kept; wide1000 (0.96) was killed for memory in its first
+// step's build with them kept, and runs with them returned (peak 0.83 of the budget).
 constexpr double kReuseFreedMemory = 0.75;
 constexpr double kProgramBytes = 60e6;
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
