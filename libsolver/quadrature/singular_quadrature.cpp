@@ -271,7 +271,11 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     } else {
       c->patch_k_.resize(c->patch_offsets_.back());
     }
-    c->nodes_.resize(c->node_offsets_.back());
+    if (o.compact_tables && c->kernel_.layer() == Layer::double_) {
+      c->nodes_f_.resize(c->node_offsets_.back());
+    } else {
+      c->nodes_.resize(c->node_offsets_.back());
+    }
     c->folded_.resize(c->folded_offsets_.back());
   }
 
@@ -329,7 +333,14 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));
-        c->nodes_[kept[i]++] = {p, pack(k)};
+        const PackedKernel packed = pack(k);
+        if (o.compact_tables && !single) {
+          NodeEntry<CompactKernel>& e = c->nodes_f_[kept[i]++];
+          e.node = p;
+          for (int j = 0; j < 6; ++j) e.k[j] = static_cast<float>(packed[j]);
+        } else {
+          c->nodes_[kept[i]++] = {p, packed};
+        }
       }
     });
   }
@@ -365,20 +376,25 @@ Eigen::MatrixXd LayerCorrection::apply(const Eigen::MatrixXd& density, const Her
   Eigen::MatrixXd out(num_targets(), 3);
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < num_targets(); ++t) {
+    const auto with_nodes = [&](const auto& stencils, const auto* kernels) {
+      return nodes_f_.empty() ? correction_at(t, stencils, kernels, nodes_.data(), density, data)
+                              : correction_at(t, stencils, kernels, nodes_f_.data(), density, data);
+    };
     if (stencils_->floats) {
-      out.row(t) = correction_at(t, stencils_->floats, patch_kf_.data(), density, data);
+      out.row(t) = with_nodes(stencils_->floats, patch_kf_.data());
     } else if (stencils_->compact) {
-      out.row(t) = correction_at(t, stencils_->compact, patch_kf_.data(), density, data);
+      out.row(t) = with_nodes(stencils_->compact, patch_kf_.data());
     } else {
-      out.row(t) = correction_at(t, stencils_->points, patch_k_.data(), density, data);
+      out.row(t) = with_nodes(stencils_->points, patch_k_.data());
     }
   }
   return out;
 }
 
-template <class Stencil, class Kernel>
+template <class Stencil, class Kernel, class NodeKernel>
 Eigen::Vector3d LayerCorrection::correction_at(int t, const std::unique_ptr<Stencil[]>& stencils, const Kernel* kernels,
-                                               const Eigen::MatrixXd& density, const HermiteData& data) const {
+                                               const NodeEntry<NodeKernel>* node_entries, const Eigen::MatrixXd& density,
+                                               const HermiteData& data) const {
   const HermiteInterpolator& interp = cell_->interpolator();
   const std::span<const Stencil> table = stencils_->of_target(stencils, t);
   const Kernel* k = kernels + patch_offsets_[t];
@@ -390,7 +406,7 @@ Eigen::Vector3d LayerCorrection::correction_at(int t, const std::unique_ptr<Sten
     sum += times(k[q], psi);
   }
   for (std::int64_t i = node_offsets_[t]; i < node_offsets_[t + 1]; ++i)
-    sum += times(nodes_[i].k, Eigen::Vector3d(density.row(nodes_[i].node)));
+    sum += times(node_entries[i].k, Eigen::Vector3d(density.row(node_entries[i].node)));
   return sum;
 }
 
@@ -422,7 +438,7 @@ std::size_t LayerCorrection::PatchStencils::memory_bytes() const {
 void LayerCorrection::report_memory(MemoryReport& report, const std::string& prefix, bool with_stencils) const {
   if (with_stencils && stencils_) report.add(prefix + ": patch stencils", stencils_->memory_bytes());
   report.add(prefix + ": patch kernels", heap_bytes(patch_k_) + heap_bytes(patch_kf_) + heap_bytes(patch_offsets_));
-  report.add(prefix + ": node entries", heap_bytes(nodes_) + heap_bytes(node_offsets_));
+  report.add(prefix + ": node entries", heap_bytes(nodes_) + heap_bytes(nodes_f_) + heap_bytes(node_offsets_));
   report.add(prefix + ": folded nodes", heap_bytes(folded_) + heap_bytes(folded_offsets_));
   report.add(prefix + ": targets", heap_bytes(targets_));
 }

@@ -37,12 +37,12 @@ struct QuadratureOptions {
   int angular_points = 0;            // points in the patch angle; 0: 2 x radial
   int spline_refinement = 2;         // Hermite grid (r N + 1) x 2 r N
   double near_factor = 1.0;          // nearly singular when d < near_factor sqrt(h)
-  // Keep the patch stencils (a point's offsets in its Hermite cell) and the patch kernels in
-  // single precision between products (LayerCorrection): a third of their memory, the largest
-  // part of a step's. They are computed in double; a correction then differs by a relative ~1e-7 (float rounding, summed
-  // over a patch), an order below the Ewald and GMRES tolerances of a run (1e-6), measured in
-  // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables...). The node
-  // entries stay in double.
+  // Keep the patch stencils (a point's offsets in its Hermite cell), the patch kernels and the
+  // double layer's node entries in single precision between products (LayerCorrection): a
+  // third of their memory, the largest part of a step's. They are computed in double; a
+  // correction then differs by a relative ~1e-7 (float rounding, summed over a patch), an
+  // order below the Ewald and GMRES tolerances of a run (1e-6), measured in
+  // tests/libsolver/quadrature/test_singular_quadrature.cpp (CompactTables..., FoldedPatchNodes...).
   bool compact_tables = true;
 };
 int default_radial_points(int order);
@@ -178,14 +178,16 @@ class LayerCorrection {
   };
   using PackedKernel = std::array<double, 6>;  // symmetric 3x3 kernel times weights: xx, xy, xz, yy, yz, zz
   using CompactKernel = std::array<float, 6>;
-  // The correction at target t for the density's Hermite data, with either precision's tables.
-  template <class Stencil, class Kernel>
-  Eigen::Vector3d correction_at(int t, const std::unique_ptr<Stencil[]>& stencils, const Kernel* kernels,
-                                const Eigen::MatrixXd& density, const HermiteData& data) const;
+  template <class Kernel>
   struct NodeEntry {
     int node;
-    PackedKernel k;
+    Kernel k;
   };
+  // The correction at target t for the density's Hermite data, with either precision's tables.
+  template <class Stencil, class Kernel, class NodeKernel>
+  Eigen::Vector3d correction_at(int t, const std::unique_ptr<Stencil[]>& stencils, const Kernel* kernels,
+                                const NodeEntry<NodeKernel>* node_entries, const Eigen::MatrixXd& density,
+                                const HermiteData& data) const;
   std::shared_ptr<const CellQuadratureGeometry> cell_;
   LayerKernel kernel_;
   std::vector<QuadratureTarget> targets_;
@@ -195,7 +197,10 @@ class LayerCorrection {
   // rather than one per target).
   std::vector<PackedKernel> patch_k_;  // in the order of the target's table (compact_tables off)
   std::vector<CompactKernel> patch_kf_;  // the same in single precision (compact_tables on)
-  std::vector<NodeEntry> nodes_;       // nodes in the patch: -eta K w
+  // Nodes in the patch: -eta K w. In single precision for the double layer with compact_tables
+  // (the single layer's cancel against its real-space sum: rounded, the layer moved by 1.5e-6).
+  std::vector<NodeEntry<PackedKernel>> nodes_;
+  std::vector<NodeEntry<CompactKernel>> nodes_f_;
   std::vector<PatchNode> folded_;      // nodes in the patch left to the caller
   std::vector<std::int64_t> patch_offsets_, node_offsets_, folded_offsets_;
 };
