@@ -85,7 +85,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   }
   geometry_timer.stop();
   // The single layer of a given density is applied once, as its corrections are built: they
-  // remove their patch nodes' shares themselves (node entries, freed with the tables) instead
+  // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
   // of folding them into the plan's pair shares, which would be held through every cell's
   // build (8 bytes a folded node, as many as the double layer's).
   if (single_density_) fold_radius[0] = 0.0;
