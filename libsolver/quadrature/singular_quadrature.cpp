@@ -18,6 +18,13 @@ std::array<double, 6> pack(const Eigen::Matrix3d& k) {
   return {k(0, 0), k(0, 1), k(0, 2), k(1, 1), k(1, 2), k(2, 2)};
 }
 
+// The same in single precision (compact_tables), rounded from the double kernel.
+std::array<float, 6> pack_rounded(const Eigen::Matrix3d& k) {
+  const std::array<double, 6> d = pack(k);
+  return {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2]),
+          static_cast<float>(d[3]), static_cast<float>(d[4]), static_cast<float>(d[5])};
+}
+
 Eigen::Vector3d unit_direction(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
@@ -301,8 +308,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, jn * weight[q]));
         const std::size_t at = static_cast<std::size_t>(c->patch_offsets_[t]) + q;
         if (o.compact_tables) {
-          const PackedKernel packed = pack(k);
-          for (int e = 0; e < 6; ++e) c->patch_kf_[at][e] = static_cast<float>(packed[e]);
+          c->patch_kf_[at] = pack_rounded(k);
         } else {
           c->patch_k_[at] = pack(k);
         }
@@ -333,13 +339,10 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         const bool single = c->kernel_.layer() == Layer::single;
         const Eigen::Matrix3d k = single ? Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta * nodes.weight[p]))
                                          : Eigen::Matrix3d(c->kernel_.matrix(r, m) * (-eta));
-        const PackedKernel packed = pack(k);
         if (o.compact_tables && !single) {
-          NodeEntry<CompactKernel>& e = c->nodes_f_[kept[i]++];
-          e.node = p;
-          for (int j = 0; j < 6; ++j) e.k[j] = static_cast<float>(packed[j]);
+          c->nodes_f_[kept[i]++] = {p, pack_rounded(k)};
         } else {
-          c->nodes_[kept[i]++] = {p, packed};
+          c->nodes_[kept[i]++] = {p, pack(k)};
         }
       }
     });
