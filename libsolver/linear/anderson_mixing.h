@@ -1,0 +1,68 @@
+#pragma once
+// Anderson acceleration of a fixed-point iteration x = F(x) (Anderson, J. ACM 12, 1965; in the
+// form of Walker & Ni, SIAM J. Numer. Anal. 49, 2011, with mixing parameter 1): from the
+// residuals g_i = F(x_i) - x_i of the last m + 1 iterates, the next iterate is
+//   x_{k+1} = F(x_k) - dF gamma,   gamma = argmin |g_k - dG gamma|,
+// with the columns of dG and dF the differences of consecutive g_i and F(x_i). For an affine
+// F(x) = A x + c it is a Krylov method on (I - A) x = c (with unbounded m, GMRES's iterates,
+// Walker & Ni theorem 2.2): where plain iteration contracts by the spectral radius of A a
+// sweep, Anderson's iteration converges like GMRES, whatever the spectrum's spread. With m = 0
+// it is the plain iteration x_{k+1} = F(x_k).
+//
+// The iterates are matrices of any shape (the cells' node velocities, P x 3), treated as
+// vectors. The least-squares problem is solved from its m x m normal equations by a
+// rank-revealing decomposition: m is small, and near convergence the columns of dG become
+// nearly dependent; the rank cut then drops the redundant directions.
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <deque>
+#include <stdexcept>
+
+namespace rbcflow {
+
+class AndersonMixing {
+ public:
+  explicit AndersonMixing(int depth) : depth_(depth) {
+    if (depth < 0) throw std::invalid_argument("AndersonMixing: the depth must be >= 0");
+  }
+
+  // Given the iterate x and its image F(x), returns the next iterate.
+  Eigen::MatrixXd next(const Eigen::MatrixXd& x, const Eigen::MatrixXd& f) {
+    Eigen::MatrixXd g = f - x;
+    if (previous_g_.size() > 0 && depth_ > 0) {
+      dG_.push_back(g - previous_g_);
+      dF_.push_back(f - previous_f_);
+      if (static_cast<int>(dG_.size()) > depth_) {
+        dG_.pop_front();
+        dF_.pop_front();
+      }
+    }
+    const int m = static_cast<int>(dG_.size());
+    Eigen::MatrixXd next = f;
+    if (m > 0) {
+      Eigen::MatrixXd gram(m, m);
+      Eigen::VectorXd rhs(m);
+      for (int i = 0; i < m; ++i) {
+        rhs[i] = dot(dG_[i], g);
+        for (int j = 0; j <= i; ++j) gram(i, j) = gram(j, i) = dot(dG_[i], dG_[j]);
+      }
+      const Eigen::VectorXd gamma = gram.completeOrthogonalDecomposition().solve(rhs);
+      for (int i = 0; i < m; ++i) next -= gamma[i] * dF_[i];
+    }
+    previous_g_ = std::move(g);
+    previous_f_ = f;
+    return next;
+  }
+
+  int depth() const { return depth_; }
+  int history() const { return static_cast<int>(dG_.size()); }
+
+ private:
+  static double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
+
+  int depth_;
+  std::deque<Eigen::MatrixXd> dG_, dF_;
+  Eigen::MatrixXd previous_g_, previous_f_;
+};
+
+}  // namespace rbcflow
