@@ -71,6 +71,7 @@ struct FlowSolution {
   std::optional<double> tube_velocity;  // U through the options' tube section
   std::vector<double> section_flux;     // through each of the options' flux_sections branches
   int gmres_cells = 0, gmres_wall = 0;
+  int start_sweeps = 0;       // the first step's sweeps of (12) and (10) (lambda != 1 with a wall)
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
   StepTimings timings;        // where solve() spent its time

@@ -28,7 +28,8 @@ class WallCoupling {
   const PeriodicBox& box() const { return box_; }
 
   // F for the velocity `v` the wall must cancel at its nodes (mu = 1); `guess` may be empty.
-  WallSolution solve(const PointField& v, const PointField& guess);
+  // A `looser` relative residual than the options' applies to this solve alone.
+  WallSolution solve(const PointField& v, const PointField& guess, double looser = 0);
   // <grad p> of (8) for a wall force.
   Eigen::Vector3d pressure_gradient(const PointField& force) const;
   // The mean velocity that gives `target` = <grad p> when the cells alone induce a wall force
