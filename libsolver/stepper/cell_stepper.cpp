@@ -268,6 +268,8 @@ FlowSolution CellStepper::solve() const {
   };
 
   try {
+    const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
+    if (start_sweeps) sweep_tolerance = kStartSweepForcing;  // U = 0 in (12): an O(1) change to come
     if (wall_) solve_wall(previous_velocity, force_guess);
     if (nc > 0) solve_cells(velocity_guess);
     // The first step has no U^{n-1} for the double layer in (12): sweep (12) and (10) until U
@@ -277,7 +279,7 @@ FlowSolution CellStepper::solve() const {
     // sweep in a tube at H_T = 0.3) into a Krylov method. Each sweep's solves stop at
     // kStartSweepForcing times the last change of U (an inexact fixed-point iteration, in the
     // manner of Eisenstat & Walker's forcing terms), the last at the solves' own tolerances.
-    if (wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np) {
+    if (start_sweeps) {
       AndersonMixing mixing(kStartSweepDepth);
       Eigen::MatrixXd U = Eigen::MatrixXd::Zero(nc * np, 3);  // the U of the first solve's (12)
       const double settled = std::max(kStartSweepTolerance, 10 * options_.gmres_tolerance);
