@@ -9,9 +9,13 @@
 
 #include <chrono>
 #include <memory>
+#include <numbers>
+#include <random>
 
 #include "geometry/vessel/vessel.h"
+#include "libsolver/common/memory_report.h"
 #include "libsolver/spme/ewald_parameters.h"
+#include "libsolver/stepper/wall_coupling.h"
 #include "libsolver/wall/near_field.h"
 #include "libsolver/wall/symmetric_block_matrix.h"
 #include "libsolver/wall/wall_real_space.h"
@@ -73,8 +77,62 @@ void BM_WallProduct(benchmark::State& state) {
   state.counters["nonzeros"] = static_cast<double>(matrix.nonZeros());
 }
 
+// The wall of data/cases/tube_1000_cells.toml (D = 12 tube, box 12.6 x 12.6 x L, h = 0.4, Ewald
+// tolerance 1e-6, GMRES to 1e-6) with the period of K cells at its hematocrit, L = 123.56 K /
+// 1000, and the recycled space's capacity R (WallSolveOptions::recycle): set-up (operator,
+// LU, the three unit-<u> seed solves), then solves from zero for the velocity that 4 K force-free
+// pairs of point forces in the lumen (free-space Stokeslets 0.5 apart, a stand-in for the
+// cells') induce at the nodes. Counters: wall nodes, iterations of each later solve (mean).
+//   build/bin/bench_wall --benchmark_filter=LongTube    arguments K, R
+void BM_LongTube(benchmark::State& state) {
+  const double length = 123.56 * static_cast<double>(state.range(0)) / 1000.0;
+  const Eigen::Vector3d side(12.6, 12.6, length);
+  TubeSpec spec{12.0, 2, side, 0.4};
+  const auto e = std::make_shared<const WallElements>(tube(spec));
+  const PointField& nodes = e->wall.surface.points;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g;
+  std::vector<PointField> velocities(3, PointField::Zero(nodes.rows(), 3));
+  for (PointField& v : velocities) {
+    for (long k = 0; k < 4 * state.range(0); ++k) {
+      const double r = 5.0 * std::sqrt(u(rng)), phi = 2 * std::numbers::pi * u(rng);
+      const Eigen::Vector3d x(6.3 + r * std::cos(phi), 6.3 + r * std::sin(phi), length * u(rng));
+      const Eigen::Vector3d f(g(rng), g(rng), g(rng)), d = 0.5 * Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+      for (Eigen::Index i = 0; i < nodes.rows(); ++i) {
+        for (const double sign : {1.0, -1.0}) {
+          Eigen::Vector3d rv = nodes.row(i).transpose() - x - (sign > 0 ? Eigen::Vector3d::Zero() : d);
+          rv[2] -= length * std::round(rv[2] / length);  // the nearest image along the axis
+          const double rn = rv.norm();
+          v.row(i) += sign * (f / rn + rv * rv.dot(f) / (rn * rn * rn)).transpose() / (8 * std::numbers::pi);
+        }
+      }
+    }
+  }
+  for (auto _ : state) {
+    WallSolveOptions options;
+    options.recycle = static_cast<int>(state.range(1));
+    const auto t0 = std::chrono::steady_clock::now();
+    WallCoupling wall(e, PeriodicBox(side), 1e-6, options);
+    const auto t1 = std::chrono::steady_clock::now();
+    double iterations = 0;
+    for (const PointField& v : velocities) iterations += wall.solve(v, {}).gmres.iterations;
+    const auto t2 = std::chrono::steady_clock::now();
+    state.counters["setup_s"] = std::chrono::duration<double>(t1 - t0).count();
+    state.counters["solve_s"] = std::chrono::duration<double>(t2 - t1).count() / velocities.size();
+    state.counters["nodes"] = static_cast<double>(nodes.rows());
+    state.counters["iterations"] = iterations / velocities.size();
+    MemoryReport memory;
+    wall.report_memory(memory);
+    for (const MemoryReport::Item& i : memory.items())
+      if (i.name == "wall recycled space") state.counters["directions"] = i.bytes / (48.0 * nodes.rows());
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_LongTube)->Args({125, 150})->Args({125, 900})->Args({512, 150})->Args({512, 900})->Args({1000, 150})->Args({1000, 300})->Args({1000, 900})
+    ->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_WallTube)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_WallProduct)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 

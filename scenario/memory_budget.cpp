@@ -86,7 +86,8 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
     }
   }
   if (wall_nodes > 0) {
-    m.parts.push_back({"wall", 72.5e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
+    const double recycled = 48.0 * s.options.wall_solve.recycle;
+    m.parts.push_back({"wall", (67.1e3 + recycled) * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
     if (cells > 0) {
       m.parts.push_back({"cells <-> wall", 17.0e3 * wall_nodes + 1.7e3 * cells * s.grids->n_grid->grid().size(),
                          kSplitCoupling});

@@ -11,7 +11,8 @@
 //                        (the cells fill the lumen, not the box), 6 bytes each in the list and
 //                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
 //                        one product's work arrays, 72 bytes per grid point
-//   wall                 72.5 kB per wall node (operator, near field, preconditioner, recycled space)
+//   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the
+//                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair
 //                        coefficients: each of these operators is applied once a step)
 //   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program
