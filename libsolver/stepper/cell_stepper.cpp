@@ -248,8 +248,9 @@ FlowSolution CellStepper::solve() const {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
     }
     ScopedTimer products_timer(timing.cell_products);
-    const VelocitySolve v = solve_cell_velocity(*layers, s.traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
-                                                options_.gmres_max_iterations, guess);
+    const VelocitySolve v =
+        solve_cell_velocity(*layers, s.traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
+                            options_.gmres_max_iterations, guess);
     products_timer.stop();
     timing.cell_corrections = layers->build_timings().applied;
     const EwaldTimings& ewald = layers->build_timings().double_layer_ewald;
