@@ -84,7 +84,7 @@ void BM_WallProduct(benchmark::State& state) {
 // pairs of point forces in the lumen (free-space Stokeslets 0.5 apart, a stand-in for the
 // cells') induce at the nodes. Counters: wall nodes, directions kept, iterations of each later
 // solve (mean). R = 900 bounds nothing: the seeds stop before it.
-//   build/bin/bench_wall --benchmark_filter=LongTube         arguments K, R (10 minutes)
+//   build/bin/bench_wall --benchmark_filter=LongTube         arguments K, R (about 12 minutes)
 //   build/bin/bench_wall --benchmark_filter=LongTube/1000    the 1,000-cell tube's wall
 void BM_LongTube(benchmark::State& state) {
   const double length = 123.56 * static_cast<double>(state.range(0)) / 1000.0;
