@@ -10,7 +10,8 @@
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 6 bytes each in the list and
 //                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
-//                        one product's work arrays, 72 bytes per grid point
+//                        one product's work arrays, 48 bytes per grid point (two arrays of 3
+//                        grids, transformed in place)
 //   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the
 //                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair

@@ -70,32 +70,27 @@ SlabFft::~SlabFft() {
     if (p) fftw_destroy_plan(p);
 }
 
-std::size_t SlabFft::real_size(int components) const {
-  const std::size_t block = static_cast<std::size_t>(planes_) * size_[1] * row_stride() * components;
-  return std::max(block, 2 * spectrum_size(components));
-}
-
-std::size_t SlabFft::spectrum_size(int components) const {
-  const std::size_t block = static_cast<std::size_t>(rows_) * size_[0] * (size_[2] / 2 + 1) * components;
-  return std::max(block, alloc3_ / 3 * components);
+std::size_t SlabFft::buffer_size(int components) const {
+  const std::size_t n3 = size_[2] / 2 + 1;
+  const std::size_t slab = static_cast<std::size_t>(planes_) * size_[1] * n3 * components;
+  const std::size_t block = static_cast<std::size_t>(rows_) * size_[0] * n3 * components;
+  return std::max({slab, block, alloc3_ / 3 * components});
 }
 
 namespace {
 
-// Plans one transform on arrays of the sizes FFTW asked for (planning may overwrite them).
+// Plans one transform in place on an array of the size FFTW asked for (planning may overwrite it).
 fftw_plan plan_slab(const std::array<int, 3>& size, int components, bool forward, MPI_Comm comm, unsigned flags,
-                    int threads, std::size_t real_size, std::size_t spectrum_size) {
+                    int threads, std::size_t buffer_size) {
   const ptrdiff_t n[3] = {size[0], size[1], size[2]};
-  FftwBuffer<double> real(real_size);
-  FftwBuffer<fftw_complex> spectrum(spectrum_size);
+  FftwBuffer<fftw_complex> data(buffer_size);
+  double* real = reinterpret_cast<double*>(data.data());
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   fftw_plan_with_nthreads(threads);
   fftw_plan p = forward ? fftw_mpi_plan_many_dft_r2c(3, n, components, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK,
-                                                     real.data(), spectrum.data(), comm,
-                                                     flags | FFTW_MPI_TRANSPOSED_OUT)
+                                                     real, data.data(), comm, flags | FFTW_MPI_TRANSPOSED_OUT)
                         : fftw_mpi_plan_many_dft_c2r(3, n, components, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK,
-                                                     spectrum.data(), real.data(), comm,
-                                                     flags | FFTW_MPI_TRANSPOSED_IN);
+                                                     data.data(), real, comm, flags | FFTW_MPI_TRANSPOSED_IN);
   fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
   if (!p) throw std::runtime_error("slab FFT: FFTW could not plan the distributed grid transform");
   return p;
@@ -103,23 +98,20 @@ fftw_plan plan_slab(const std::array<int, 3>& size, int components, bool forward
 
 }  // namespace
 
-void SlabFft::forward(int components, double* real, fftw_complex* spectrum) const {
+void SlabFft::forward(fftw_complex* data) const {
   check_outside_parallel_region("a transform");
-  if (components != 3) throw std::invalid_argument("slab FFT: 3 interleaved grids, not " + std::to_string(components));
   std::call_once(plans_->made_forward, [&] {
-    plans_->forward3 = plan_slab(size_, 3, true, plans_->comm, plans_->flags, plans_->threads, real_size(3),
-                                 spectrum_size(3));
+    plans_->forward3 = plan_slab(size_, 3, true, plans_->comm, plans_->flags, plans_->threads, buffer_size(3));
   });
-  fftw_mpi_execute_dft_r2c(plans_->forward3, real, spectrum);
+  fftw_mpi_execute_dft_r2c(plans_->forward3, reinterpret_cast<double*>(data), data);
 }
 
-void SlabFft::backward(fftw_complex* spectrum, double* real) const {
+void SlabFft::backward(fftw_complex* data) const {
   check_outside_parallel_region("a transform");
   std::call_once(plans_->made_backward, [&] {
-    plans_->backward3 = plan_slab(size_, 3, false, plans_->comm, plans_->flags, plans_->threads, real_size(3),
-                                  spectrum_size(3));
+    plans_->backward3 = plan_slab(size_, 3, false, plans_->comm, plans_->flags, plans_->threads, buffer_size(3));
   });
-  fftw_mpi_execute_dft_c2r(plans_->backward3, spectrum, real);
+  fftw_mpi_execute_dft_c2r(plans_->backward3, data, reinterpret_cast<double*>(data));
 }
 
 #else  // no FFTW MPI interface: SpmeGrid transforms whole grids
@@ -132,10 +124,9 @@ SlabFft::SlabFft(const Communicator&, const std::array<int, 3>& size, unsigned, 
   throw std::logic_error("slab FFT: this build has no FFTW MPI library (libfftw3-mpi-dev)");
 }
 SlabFft::~SlabFft() = default;
-std::size_t SlabFft::real_size(int) const { return 0; }
-std::size_t SlabFft::spectrum_size(int) const { return 0; }
-void SlabFft::forward(int, double*, fftw_complex*) const {}
-void SlabFft::backward(fftw_complex*, double*) const {}
+std::size_t SlabFft::buffer_size(int) const { return 0; }
+void SlabFft::forward(fftw_complex*) const {}
+void SlabFft::backward(fftw_complex*) const {}
 
 #endif
 

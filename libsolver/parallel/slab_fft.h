@@ -5,10 +5,10 @@
 //   - of the spectrum, the rows [first_row, first_row + rows) of the second direction, transposed
 //     (FFTW_MPI_TRANSPOSED_OUT: the forward transform leaves out its last global transpose and the
 //     backward transform starts from the transposed spectrum).
-// With K = (K1, K2, K3), n3 = K3/2 + 1, R = 2 n3 (FFTW's padding of the real rows) and C
-// interleaved components:
-//   real:     value c of (i, j, l) at (((i - first_plane) K2 + j) R + l) C + c
-//   spectrum: value c of (i, j, l) at (((j - first_row) K1 + i) n3 + l) C + c
+// The transforms are in place. With K = (K1, K2, K3), n3 = K3/2 + 1, R = 2 n3 (FFTW's padding
+// of the real rows) and C interleaved components, an array holds
+//   real:     value c of (i, j, l) at (((i - first_plane) K2 + j) R + l) C + c (doubles)
+//   spectrum: value c of (i, j, l) at (((j - first_row) K1 + i) n3 + l) C + c (complex numbers)
 // Every call is collective: all ranks make it, in the same order, from the thread that
 // initialised MPI (outside OpenMP parallel regions).
 #include <fftw3.h>
@@ -39,15 +39,14 @@ class SlabFft {
   int first_row() const { return first_row_; }
   int rows() const { return rows_; }
   int row_stride() const { return 2 * (size_[2] / 2 + 1); }  // R
-  // What a real array and a spectrum of `components` interleaved grids must hold on this rank
-  // (FFTW's transposes may need more than the local block).
-  std::size_t real_size(int components) const;      // doubles
-  std::size_t spectrum_size(int components) const;  // complex numbers
+  // Complex numbers an array of `components` interleaved grids must hold on this rank, real
+  // slab and spectrum block alike (FFTW's transposes may need more than the local block).
+  std::size_t buffer_size(int components) const;
 
-  // Forward transform of `components` (3) interleaved real slabs; `real` may be destroyed.
-  void forward(int components, double* real, fftw_complex* spectrum) const;
-  // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
-  void backward(fftw_complex* spectrum, double* real) const;
+  // Forward transform in place of 3 interleaved real slabs.
+  void forward(fftw_complex* data) const;
+  // Backward (unnormalised) transform in place of 3 interleaved spectra.
+  void backward(fftw_complex* data) const;
 
  private:
   struct Plans;

@@ -18,21 +18,18 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// Plans a `components`-fold interleaved 3-D transform; the caller holds fftw_planner_mutex().
-fftw_plan plan_many(const std::array<int, 3>& n, int components, bool forward, unsigned flags) {
-  const int real_dims[3] = {n[0], n[1], n[2]};
-  const int complex_dims[3] = {n[0], n[1], n[2] / 2 + 1};
-  const std::size_t real_size = static_cast<std::size_t>(n[0]) * n[1] * n[2] * components;
-  const std::size_t complex_size =
-      static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * components;
-  FftwBuffer<double> real(real_size);
-  FftwBuffer<fftw_complex> spectrum(complex_size);
-  fftw_plan p =
-      forward ? fftw_plan_many_dft_r2c(3, real_dims, components, real.data(), real_dims, components,
-                                       1, spectrum.data(), complex_dims, components, 1, flags)
-              : fftw_plan_many_dft_c2r(3, real_dims, components, spectrum.data(), complex_dims,
-                                       components, 1, real.data(), real_dims, components, 1, flags);
-  return p;  // nullptr if FFTW cannot plan it
+// Plans the in-place transform of 3 interleaved grids (padded real rows, FFTW's r2c layout);
+// the caller holds fftw_planner_mutex().
+fftw_plan plan_in_place(const std::array<int, 3>& n, bool forward, unsigned flags) {
+  constexpr int C = 3;
+  const int dims[3] = {n[0], n[1], n[2]};
+  const int real_rows[3] = {n[0], n[1], 2 * (n[2] / 2 + 1)};
+  const int complex_rows[3] = {n[0], n[1], n[2] / 2 + 1};
+  FftwBuffer<fftw_complex> data(static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * C);
+  double* real = reinterpret_cast<double*>(data.data());
+  return forward ? fftw_plan_many_dft_r2c(3, dims, C, real, real_rows, C, 1, data.data(), complex_rows, C, 1, flags)
+                 : fftw_plan_many_dft_c2r(3, dims, C, data.data(), complex_rows, C, 1, real, real_rows, C, 1, flags);
+  // nullptr if FFTW cannot plan it
 }
 
 }  // namespace
@@ -57,7 +54,7 @@ SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, Ff
     }
     modulus[d] = bspline_modulus(parameters.order, K[d]);
   }
-  influence_.assign(spectrum_size(1), 0.0);
+  influence_.assign(spectrum_points(), 0.0);
   const double inv_volume = 1.0 / box.volume();
   for_each_wavevector([&](std::size_t m, int i, int j, int l) {
     if (i == K[0] / 2 || j == K[1] / 2 || l == K[2] / 2) return;  // Nyquist planes
@@ -89,12 +86,12 @@ SpmeGrid::~SpmeGrid() {
     if (p->plan) fftw_destroy_plan(p->plan);
 }
 
-fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward) const {
+fftw_plan SpmeGrid::plan(LazyPlan& p, bool forward) const {
   std::call_once(p.made, [&] {
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     static const bool threads_ready = fftw_init_threads() != 0;
     if (threads_ready) fftw_plan_with_nthreads(threads_);
-    const fftw_plan made = plan_many(parameters_.grid, components, forward, flags_);
+    const fftw_plan made = plan_in_place(parameters_.grid, forward, flags_);
     if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
     if (!made) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
     p.plan = made;
@@ -110,25 +107,22 @@ std::size_t SpmeGrid::complex_points() const {
   return static_cast<std::size_t>(size(0)) * size(1) * (size(2) / 2 + 1);
 }
 
-std::size_t SpmeGrid::real_size(int components) const {
-  return slab_ ? slab_->real_size(components) : components * real_points();
+std::size_t SpmeGrid::spectrum_points() const {
+  return slab_ ? static_cast<std::size_t>(slab_->rows()) * size(0) * (size(2) / 2 + 1) : complex_points();
 }
 
-std::size_t SpmeGrid::spectrum_size(int components) const {
-  if (slab_) return components == 1 ? static_cast<std::size_t>(slab_->rows()) * size(0) * (size(2) / 2 + 1)
-                                    : slab_->spectrum_size(components);
-  return components * complex_points();
+std::size_t SpmeGrid::buffer_size(int components) const {
+  return slab_ ? slab_->buffer_size(components) : components * complex_points();
 }
 
-void SpmeGrid::forward(int components, double* real, fftw_complex* spectrum) const {
-  if (components != 3) throw std::invalid_argument("SpmeGrid::forward: 3 interleaved grids, not " + std::to_string(components));
-  if (slab_) return slab_->forward(components, real, spectrum);
-  fftw_execute_dft_r2c(plan(forward3_, 3, true), real, spectrum);
+void SpmeGrid::forward(fftw_complex* data) const {
+  if (slab_) return slab_->forward(data);
+  fftw_execute_dft_r2c(plan(forward3_, true), real_part(data), data);
 }
 
-void SpmeGrid::backward(fftw_complex* spectrum, double* real) const {
-  if (slab_) return slab_->backward(spectrum, real);
-  fftw_execute_dft_c2r(plan(backward3_, 3, false), spectrum, real);
+void SpmeGrid::backward(fftw_complex* data) const {
+  if (slab_) return slab_->backward(data);
+  fftw_execute_dft_c2r(plan(backward3_, false), data, real_part(data));
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {

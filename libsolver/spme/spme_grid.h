@@ -3,8 +3,10 @@
 // 1995; Saintillan, Darve & Shaqfeh 2005): the uniform grid, its FFTW plans and the influence
 // function of the Fourier parts S^F, T^F (eq. 25, 28; docs/references.md section 2).
 //
-// Grid arrays interleave components: value c of grid point (i, j, l) is at
-// ((i K2 + j) K3 + l) C + c, spectra likewise with K3/2 + 1 in place of K3 (FFTW r2c layout).
+// Grid arrays interleave components and are transformed in place (FFTW manual, section 4.3.4
+// "Real-data DFT Array Format"): value c of grid point (i, j, l) is at ((i K2 + j) R + l) C + c,
+// R = 2 (K3/2 + 1) (each row padded by one or two points), and after the forward transform its
+// spectrum's value c of (i, j, l) at ((i K2 + j) (K3/2 + 1) + l) C + c of the same array.
 // Influence (r = source - target, hence the kernels at -k; ewald_kernels.h):
 //   u^(k) = (1/V) K^F(-k) rho^(k) / (|B1(m1)|^2 |B2(m2)|^2 |B3(m3)|^2),  |Bd|^2 = bspline_modulus,
 // with k = 0 removed and the Nyquist planes (m_d = K_d/2) dropped.
@@ -15,8 +17,8 @@
 //
 // Split over ranks (a grid made with a Communicator of several ranks, in a build with FFTW's
 // MPI library: distributed()), each rank holds only its slab of the grid, planes
-// [first_plane(), first_plane() + planes()) of the first direction, with the rows of the real
-// arrays padded to row_stride() points, and its block of the spectrum, transposed
+// [first_plane(), first_plane() + planes()) of the first direction, and its block of the
+// spectrum, transposed
 // (parallel/slab_fft.h). Spreading into the slab and interpolating from it then give each
 // rank its part of a product; the parts sum to the whole (operators/cell_layers.h). Its
 // transforms are collective: every rank makes the same products in the same order.
@@ -63,18 +65,20 @@ class SpmeGrid {
   bool distributed() const { return slab_ != nullptr; }
   int first_plane() const { return slab_ ? slab_->first_plane() : 0; }
   int planes() const { return slab_ ? slab_->planes() : size(0); }
-  int row_stride() const { return slab_ ? slab_->row_stride() : size(2); }  // points from row to row
+  int row_stride() const { return 2 * (size(2) / 2 + 1); }  // R: points from row to row
   // Points of this rank's real grid, padding included: planes() x K2 x row_stride().
   std::size_t slab_points() const { return static_cast<std::size_t>(planes()) * size(1) * row_stride(); }
-  // What this rank's real arrays and spectra of `components` interleaved grids hold.
-  std::size_t real_size(int components) const;      // doubles
-  std::size_t spectrum_size(int components) const;  // complex numbers
+  // Complex numbers of an array (FftwBuffer<fftw_complex>) that holds this rank's part of
+  // `components` interleaved real grids and, in place, of their spectra: 8 C bytes a grid point
+  // and the rows' padding (FFTW's transposes may ask for a little more).
+  std::size_t buffer_size(int components) const;
+  // The real grids of such an array.
+  static double* real_part(fftw_complex* data) { return reinterpret_cast<double*>(data); }
 
-  // Forward transform of 3 interleaved real grids (arrays from fftw_malloc);
-  // `real` may be destroyed.
-  void forward(int components, double* real, fftw_complex* spectrum) const;
-  // Backward (unnormalised) transform of 3 interleaved spectra; destroys `spectrum`.
-  void backward(fftw_complex* spectrum, double* real) const;
+  // Forward transform in place of 3 interleaved real grids to their spectra.
+  void forward(fftw_complex* data) const;
+  // Backward (unnormalised) transform in place of 3 interleaved spectra to real grids.
+  void backward(fftw_complex* data) const;
 
   // Single layer, in place on 3 interleaved spectra: u^ = (1/V) S^F(k) f^ / |B|^2.
   void apply_stokeslet(fftw_complex* spectrum) const;
@@ -94,7 +98,8 @@ class SpmeGrid {
     std::once_flag made;
     fftw_plan plan = nullptr;
   };
-  fftw_plan plan(LazyPlan& p, int components, bool forward) const;
+  fftw_plan plan(LazyPlan& p, bool forward) const;
+  std::size_t spectrum_points() const;  // of this rank's spectrum (the influence function's)
   // Calls f(m, i, j, l) for every wavevector (i, j, l) of this rank's spectrum, m its index
   // there (spectra interleave their components: component c of m at C m + c); parallel.
   template <class F>

@@ -41,12 +41,12 @@ PointField SpmePlan::single_layer(const PointField& forces) {
   check_rows(forces, n_sources(), "the force field");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<double> real(grid_->real_size(3));
+  FftwBuffer<fftw_complex> grid(grid_->buffer_size(3));
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
-  sources_->spread<3>(density.data(), real.data());
-  return convolve_stokeslet(real, t);
+  sources_->spread<3>(density.data(), SpmeGrid::real_part(grid.data()));
+  return convolve_stokeslet(grid, t);
 }
 
 PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading, const PointField& x) {
@@ -57,11 +57,11 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
                                 " unknowns on a grid of " + std::to_string(slab_points) + " points");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(x.rows()));
-  FftwBuffer<double> real(grid_->real_size(3));
+  FftwBuffer<fftw_complex> buffer(grid_->buffer_size(3));
   for (Eigen::Index n = 0; n < x.rows(); ++n)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(n) + c] = x(n, c);
   const double* in = density.data();
-  double* grid = real.data();
+  double* grid = SpmeGrid::real_part(buffer.data());
 #pragma omp parallel for schedule(dynamic, 4096)
   for (Eigen::Index g = 0; g < spreading.rows(); ++g) {
     double a = 0.0, b = 0.0, c = 0.0;
@@ -75,17 +75,16 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
     grid[3 * g + 1] = b;
     grid[3 * g + 2] = c;
   }
-  return convolve_stokeslet(real, t);
+  return convolve_stokeslet(buffer, t);
 }
 
-PointField SpmePlan::convolve_stokeslet(FftwBuffer<double>& real, std::chrono::steady_clock::time_point t) {
+PointField SpmePlan::convolve_stokeslet(FftwBuffer<fftw_complex>& grid, std::chrono::steady_clock::time_point t) {
   timings_.spreading = seconds_since(t);
-  FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
-  grid_->forward(3, real.data(), velocity.data());
+  grid_->forward(grid.data());
   timings_.fft = seconds_since(t);
-  grid_->apply_stokeslet(velocity.data());
+  grid_->apply_stokeslet(grid.data());
   timings_.influence = seconds_since(t);
-  return transform_and_interpolate(velocity, real);
+  return transform_and_interpolate(grid);
 }
 
 PointField SpmePlan::double_layer(const PointField& q, const PointField& normals) {
@@ -93,12 +92,12 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
   // The symmetric part of q n^T (T is symmetric) a half at a time, the diagonal (xx, yy, zz)
-  // then xy, xz, yz: each half spread, transformed and its velocity spectrum added. At most the
-  // velocity's spectra, one half's spectra and its real grids live together, 72 bytes a grid
-  // point (all six components at once took 96): the largest memory of a product.
+  // then xy, xz, yz: each half spread, transformed in place and its velocity spectrum added.
+  // At most the velocity's array and one half's live together, 48 bytes a grid point (all six
+  // components at once out of place took 96): the largest memory of a product.
   timings_ = {};
   std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<fftw_complex> velocity(grid_->spectrum_size(3));
+  FftwBuffer<fftw_complex> velocity(grid_->buffer_size(3));
   for (const auto part : {SpmeGrid::StressletHalf::diagonal, SpmeGrid::StressletHalf::off_diagonal}) {
     const bool diagonal = part == SpmeGrid::StressletHalf::diagonal;
 #pragma omp parallel for schedule(static)
@@ -116,29 +115,25 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
         d[2] = 0.5 * (q1 * n2 + q2 * n1);
       }
     }
-    FftwBuffer<fftw_complex> spectrum(diagonal ? 0 : grid_->spectrum_size(3));  // the diagonal's: `velocity`
-    fftw_complex* half = diagonal ? velocity.data() : spectrum.data();
-    {
-      FftwBuffer<double> real(grid_->real_size(3));
-      sources_->spread<3>(density.data(), real.data());
-      timings_.spreading += seconds_since(t);
-      grid_->forward(3, real.data(), half);
-      timings_.fft += seconds_since(t);
-    }
+    FftwBuffer<fftw_complex> off_diagonal(diagonal ? 0 : grid_->buffer_size(3));  // the diagonal's: `velocity`
+    fftw_complex* half = diagonal ? velocity.data() : off_diagonal.data();
+    sources_->spread<3>(density.data(), SpmeGrid::real_part(half));
+    timings_.spreading += seconds_since(t);
+    grid_->forward(half);
+    timings_.fft += seconds_since(t);
     grid_->apply_stresslet(part, half, velocity.data(), !diagonal);
     timings_.influence += seconds_since(t);
   }
   std::vector<double>().swap(density);
-  FftwBuffer<double> velocity_grid(grid_->real_size(3));
-  return transform_and_interpolate(velocity, velocity_grid);
+  return transform_and_interpolate(velocity);
 }
 
-PointField SpmePlan::transform_and_interpolate(FftwBuffer<fftw_complex>& velocity, FftwBuffer<double>& real) {
+PointField SpmePlan::transform_and_interpolate(FftwBuffer<fftw_complex>& velocity) {
   auto t = std::chrono::steady_clock::now();
-  grid_->backward(velocity.data(), real.data());
+  grid_->backward(velocity.data());
   timings_.fft += seconds_since(t);
   PointField u;
-  targets_->interpolate(real.data(), u);
+  targets_->interpolate(SpmeGrid::real_part(velocity.data()), u);
   timings_.interpolation = seconds_since(t);
   return u;
 }
@@ -148,13 +143,12 @@ std::size_t SpmePlan::stencil_bytes() const {
 }
 
 std::size_t SpmePlan::work_bytes(int components) const {
-  // The single layer holds its density, real grids and spectra (3 components each) for its
-  // product; the double layer the same for one half of its density and the velocity's spectra
+  // The single layer holds its density and one array of 3 grids (transformed in place) for its
+  // product; the double layer the same for one half of its density and the velocity's array
   // besides (double_layer()).
-  const std::size_t spectra = grid_->spectrum_size(3) * sizeof(fftw_complex);
-  const std::size_t three = 3 * static_cast<std::size_t>(n_sources()) * sizeof(double) +
-                            grid_->real_size(3) * sizeof(double) + spectra;
-  return components == 6 ? three + spectra : three;
+  const std::size_t array = grid_->buffer_size(3) * sizeof(fftw_complex);
+  const std::size_t three = 3 * static_cast<std::size_t>(n_sources()) * sizeof(double) + array;
+  return components == 6 ? three + array : three;
 }
 
 }  // namespace rbcflow

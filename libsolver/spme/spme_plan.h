@@ -55,11 +55,11 @@ class SpmePlan {
   const SpmeTimings& timings() const { return timings_; }
 
  private:
-  // The single layer of the forces spread into `real` (spreading begun at t): transforms,
-  // influence function, interpolation.
-  PointField convolve_stokeslet(FftwBuffer<double>& real, std::chrono::steady_clock::time_point t);
-  // Backward FFT of `velocity` (into `real`) and interpolation to the targets.
-  PointField transform_and_interpolate(FftwBuffer<fftw_complex>& velocity, FftwBuffer<double>& real);
+  // The single layer of the forces spread into the real grids of `grid` (spreading begun at
+  // t): transforms, influence function, interpolation, in place.
+  PointField convolve_stokeslet(FftwBuffer<fftw_complex>& grid, std::chrono::steady_clock::time_point t);
+  // Backward FFT of `velocity` in place and interpolation to the targets.
+  PointField transform_and_interpolate(FftwBuffer<fftw_complex>& velocity);
 
   std::shared_ptr<const SpmeGrid> grid_;
   std::shared_ptr<const SpmeStencils> sources_, targets_;

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "geometry/sph/fftw_util.h"
 #include "libsolver/kernels/ewald_kernels.h"
@@ -33,25 +34,49 @@ double spline_modulus(int i, int j, int l, const SpmeGrid& g) {
 }
 }  // namespace
 
-// Backward(forward(x)) = K1 K2 K3 x, for 3 and 6 interleaved components.
-TEST(SpmeGrid, TransformsRoundTrip) {
+// The in-place transforms of 3 interleaved grids with padded rows give each component's DFT,
+// as FFTW's out-of-place transform of that component alone computes it, and backward(forward(x))
+// = K1 K2 K3 x at every grid point (the rows' padding is no part of the grid).
+TEST(SpmeGrid, InPlaceTransformsOfInterleavedGrids) {
   const SpmeGrid grid(kBox, kParams);
+  const int K1 = grid.size(0), K2 = grid.size(1), K3 = grid.size(2), n3 = K3 / 2 + 1, R = grid.row_stride();
+  ASSERT_EQ(R, 2 * n3);
   const std::size_t n = grid.real_points();
-  FftwBuffer<double> real(6 * n), back(3 * n);
-  FftwBuffer<fftw_complex> spectrum(6 * grid.complex_points());
+  FftwBuffer<fftw_complex> data(grid.buffer_size(3));
+  ASSERT_EQ(grid.buffer_size(3), 3 * grid.complex_points());
+  double* real = SpmeGrid::real_part(data.data());
   std::mt19937 gen(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> original(6 * n);
-  for (std::size_t i = 0; i < 6 * n; ++i) real.data()[i] = original[i] = u(gen);
-  grid.forward(3, real.data(), spectrum.data());
-  grid.backward(spectrum.data(), back.data());
-  double err = 0;
-  for (std::size_t i = 0; i < 3 * n; ++i)
-    err = std::max(err, std::abs(back.data()[i] / n - original[i]));
-  EXPECT_LT(err, 1e-14);
-  // The transforms are of 3 interleaved grids only (the double layer takes its six density
-  // components three at a time).
-  EXPECT_THROW(grid.forward(6, real.data(), spectrum.data()), std::invalid_argument);
+  std::vector<double> original(3 * n);  // component c of (i, j, l) at ((i K2 + j) K3 + l) 3 + c
+  for (double& x : original) x = u(gen);
+  for (std::size_t row = 0; row < static_cast<std::size_t>(K1) * K2; ++row)
+    for (int l = 0; l < R; ++l)
+      for (int c = 0; c < 3; ++c) real[(row * R + l) * 3 + c] = l < K3 ? original[(row * K3 + l) * 3 + c] : 1e300;
+  grid.forward(data.data());
+
+  double err = 0, norm = 0;
+  for (int c = 0; c < 3; ++c) {
+    FftwBuffer<double> one(n);
+    FftwBuffer<fftw_complex> spectrum(grid.complex_points());
+    for (std::size_t p = 0; p < n; ++p) one.data()[p] = original[3 * p + c];
+    const fftw_plan plan = fftw_plan_dft_r2c_3d(K1, K2, K3, one.data(), spectrum.data(), FFTW_ESTIMATE);
+    fftw_execute(plan);
+    fftw_destroy_plan(plan);
+    for (std::size_t m = 0; m < grid.complex_points(); ++m)
+      for (int k = 0; k < 2; ++k) {
+        err = std::max(err, std::abs(data.data()[3 * m + c][k] - spectrum.data()[m][k]));
+        norm = std::max(norm, std::abs(spectrum.data()[m][k]));
+      }
+  }
+  EXPECT_LT(err, 1e-13 * norm) << "forward against FFTW's out-of-place transform of each component";
+
+  grid.backward(data.data());
+  double back = 0;
+  for (std::size_t row = 0; row < static_cast<std::size_t>(K1) * K2; ++row)
+    for (int l = 0; l < K3; ++l)
+      for (int c = 0; c < 3; ++c)
+        back = std::max(back, std::abs(real[(row * R + l) * 3 + c] / n - original[(row * K3 + l) * 3 + c]));
+  EXPECT_LT(back, 1e-14);
 }
 
 // One mode at a time: u^ = (1/V) K^F(-k) rho^ / |B|^2, zero at k = 0 and on Nyquist planes.

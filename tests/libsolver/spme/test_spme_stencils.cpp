@@ -32,11 +32,11 @@ TEST(SpmeStencils, SpreadingConservesTotals) {
     x.row(0) << -0.3, 2.5, 7.0;
     const PointField f = random_vectors(200, 2);
     const SpmeStencils stencils(grid, x);
-    std::vector<double> g(3 * grid.real_points());
+    std::vector<double> g(3 * grid.slab_points());
     stencils.spread<3>(interleave(f).data(), g.data());
     for (int c = 0; c < 3; ++c) {
       double total = 0;
-      for (std::size_t i = 0; i < grid.real_points(); ++i) total += g[3 * i + c];
+      for (std::size_t i = 0; i < grid.slab_points(); ++i) total += g[3 * i + c];  // rows' padding: 0
       EXPECT_NEAR(total, f.col(c).sum(), 1e-12) << "p = " << p;
     }
   }
@@ -49,12 +49,14 @@ TEST(SpmeStencils, PointOnANode) {
   PointField x(1, 3);
   x << 5.0 / 16 * kL[0], 7.0 / 16 * kL[1], 9.0 / 16 * kL[2];
   const SpmeStencils stencils(grid, x);
-  std::vector<double> g(3 * grid.real_points());
+  std::vector<double> g(3 * grid.slab_points());
   const double f[3] = {1.0, 0.0, 0.0};
   stencils.spread<3>(f, g.data());
-  // Nodes 5 - j along each direction, weight M_4(j): 1/6, 2/3, 1/6 for j = 1, 2, 3.
+  // Nodes 5 - j along each direction, weight M_4(j): 1/6, 2/3, 1/6 for j = 1, 2, 3; the rows
+  // of the grid array are padded to 18 points (FFTW's in-place layout).
+  ASSERT_EQ(grid.row_stride(), 18);
   const auto node = [&](int i, int j, int l) {
-    return g[3 * ((static_cast<std::size_t>(i) * 16 + j) * 16 + l)];
+    return g[3 * ((static_cast<std::size_t>(i) * 16 + j) * 18 + l)];
   };
   EXPECT_NEAR(node(3, 5, 7), bspline(p, 2) * bspline(p, 2) * bspline(p, 2), 1e-15);
   EXPECT_NEAR(node(4, 6, 8), bspline(p, 1) * bspline(p, 1) * bspline(p, 1), 1e-15);
@@ -67,7 +69,7 @@ TEST(SpmeStencils, InterpolationIsTheAdjointOfSpreading) {
   const SpmeGrid grid(kBox, EwaldParameters{5.0, 0.3, {20, 24, 30}, 6});
   const PointField x = random_points(100, kL, 3), f = random_vectors(100, 4);
   const SpmeStencils stencils(grid, x);
-  std::vector<double> g(3 * grid.real_points(), 2.5);
+  std::vector<double> g(3 * grid.slab_points(), 2.5);
   PointField u;
   stencils.interpolate(g.data(), u);
   EXPECT_LT((u.array() - 2.5).abs().maxCoeff(), 1e-13);
@@ -86,7 +88,7 @@ TEST(SpmeStencils, ParallelSpreadingIsRaceFreeAndDeterministic) {
   const PointField x = random_points(5000, kL, 5), f = random_vectors(5000, 6);
   const SpmeStencils stencils(grid, x);
   const std::vector<double> density = interleave(f);
-  std::vector<double> one(3 * grid.real_points()), two(one.size());
+  std::vector<double> one(3 * grid.slab_points()), two(one.size());
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   stencils.spread<3>(density.data(), one.data());
