@@ -186,43 +186,72 @@ NeighborList::NeighborList(const PeriodicBox& box, double cutoff, const PointFie
   };
 
   // Whether a candidate is a pair is decided without branches (about half of them are not:
-  // a branch per candidate mispredicts), so that the count vectorises.
+  // a branch per candidate mispredicts), the pairs compacted likewise.
   const auto is_pair = [rc2, eps2](const Candidates& c, int k, const double* xt) {
     const double r0 = c.x[k] - xt[0], r1 = c.y[k] - xt[1], r2 = c.z[k] - xt[2];
     const double d2 = r0 * r0 + r1 * r1 + r2 * r2;
     return static_cast<int>(d2 < rc2) & static_cast<int>(d2 > eps2);
   };
-  offsets_.assign(nt + 1, 0);
-  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
-    int count = 0;
-#pragma omp simd reduction(+ : count)
-    for (int k = 0; k < m; ++k) count += is_pair(c, k, xt);
-    offsets_[t + 1] = count;
-  });
-  for (int t = 0; t < nt; ++t) offsets_[t + 1] += offsets_[t];
-  pair_source_.resize(offsets_.back());
-  pair_image_.resize(offsets_.back());
-  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
-    // The candidates that are pairs, compacted without branches, then stored in order.
-    thread_local std::vector<int> listed;
+  const auto list_pairs = [&](int m, const Candidates& c, const double* xt, std::vector<int>& listed) {
     listed.resize(m + 1);
     int n = 0;
     for (int k = 0; k < m; ++k) {
       listed[n] = k;
       n += is_pair(c, k, xt);
     }
-    std::int64_t out = offsets_[t];
-    for (int i = 0; i < n; ++i, ++out) {
-      pair_source_[out] = c.source[listed[i]];
-      pair_image_[out] = static_cast<std::uint16_t>(c.image[listed[i]]);
+    return n;
+  };
+  // Codes the listed pairs (see codes_), out = nullptr only counts them; returns the words.
+  home_image_ = cells.image_id(0, 0, 0);
+  const auto code_pairs = [home = home_image_](const Candidates& c, const std::vector<int>& listed, int n,
+                                               std::uint16_t* out) {
+    std::int64_t words = 0;
+    int previous = 0, image = home;
+    for (int i = 0; i < n; ++i) {
+      const int s = c.source[listed[i]], im = c.image[listed[i]];
+      const std::int64_t step = static_cast<std::int64_t>(s) - previous;
+      if (im == image && step > kEscape && step <= INT16_MAX) {
+        if (out) out[words] = static_cast<std::uint16_t>(static_cast<std::int16_t>(step));
+        ++words;
+      } else {
+        if (out) {
+          out[words] = static_cast<std::uint16_t>(kEscape);
+          out[words + 1] = static_cast<std::uint16_t>(static_cast<std::uint32_t>(s) & 0xffffu);
+          out[words + 2] = static_cast<std::uint16_t>(static_cast<std::uint32_t>(s) >> 16);
+          out[words + 3] = static_cast<std::uint16_t>(im);
+        }
+        words += 4;
+        image = im;
+      }
+      previous = s;
     }
+    return words;
+  };
+  offsets_.assign(nt + 1, 0);
+  code_offsets_.assign(nt + 1, 0);
+  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
+    thread_local std::vector<int> listed;
+    const int n = list_pairs(m, c, xt, listed);
+    offsets_[t + 1] = n;
+    code_offsets_[t + 1] = code_pairs(c, listed, n, nullptr);
   });
+  for (int t = 0; t < nt; ++t) {
+    offsets_[t + 1] += offsets_[t];
+    code_offsets_[t + 1] += code_offsets_[t];
+  }
+  codes_.resize(code_offsets_.back());
+  for_each_pair_by_cell([&](int t, int m, const Candidates& c, const double* xt) {
+    thread_local std::vector<int> listed;
+    const int n = list_pairs(m, c, xt, listed);
+    code_pairs(c, listed, n, codes_.data() + code_offsets_[t]);
+  });
+  code_offsets_.pop_back();
 }
 
 std::size_t NeighborList::memory_bytes() const {
   return heap_bytes(order_) + heap_bytes(sources_) + heap_bytes(target_order_) + heap_bytes(rank_) +
-         heap_bytes(targets_) + heap_bytes(image_shifts_) + heap_bytes(offsets_) + heap_bytes(pair_source_) +
-         heap_bytes(pair_image_);
+         heap_bytes(targets_) + heap_bytes(image_shifts_) + heap_bytes(offsets_) + heap_bytes(code_offsets_) +
+         heap_bytes(codes_);
 }
 
 }  // namespace rbcflow

@@ -8,6 +8,12 @@
 // Coincident points: pairs with |r| <= coincidence_distance() (1e-12 V^(1/3)), the r = 0 of a
 // source that is also a target, are left out: the real-space kernel is singular there and the
 // singular quadrature accounts for it (its regular part is ewald_real_stokeslet_self).
+//
+// The pairs are stored compactly, about 2 bytes each instead of 6 (a source index and an image
+// id): a target's pairs, in the order of its search (cell by cell, sources ascending), as the
+// 16-bit difference of each source index from the one before, with an escape word followed by
+// the full index and the image id where the image changes or the step does not fit (a few
+// times a target, where the search moves to another row or plane of cells).
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -45,10 +51,19 @@ class NeighborList {
   void for_each_pair(int t, F&& f) const {
     const std::size_t k = static_cast<std::size_t>(rank_[t]);
     const double* xt = &targets_[3 * k];
+    const std::uint16_t* code = codes_.data() + code_offsets_[k];
+    int s = 0;
+    const double* shift = &image_shifts_[3 * static_cast<std::size_t>(home_image_)];
     for (std::int64_t i = offsets_[k]; i < offsets_[k + 1]; ++i) {
-      const int s = pair_source_[i];
+      const auto step = static_cast<std::int16_t>(*code++);
+      if (step == kEscape) [[unlikely]] {
+        s = static_cast<int>(code[0] | (static_cast<std::uint32_t>(code[1]) << 16));
+        shift = &image_shifts_[3 * static_cast<std::size_t>(code[2])];
+        code += 3;
+      } else {
+        s += step;
+      }
       const double* xs = &sources_[3 * static_cast<std::size_t>(s)];
-      const double* shift = &image_shifts_[3 * static_cast<std::size_t>(pair_image_[i])];
       f(i, s, Eigen::Vector3d(xs[0] + shift[0] - xt[0], xs[1] + shift[1] - xt[1],
                               xs[2] + shift[2] - xt[2]));
     }
@@ -64,8 +79,13 @@ class NeighborList {
   std::vector<double> targets_;        // wrapped target positions, sorted, xyz interleaved
   std::vector<double> image_shifts_;   // n L for each image id, xyz interleaved
   std::vector<std::int64_t> offsets_;  // pairs of sorted target k: [offsets_[k], offsets_[k + 1])
-  std::vector<std::int32_t> pair_source_;
-  std::vector<std::uint16_t> pair_image_;
+  // The pairs of sorted target k coded from codes_[code_offsets_[k]] on, each a step of the
+  // source index from the pair before (from source 0 in the home image, n = 0, for the first)
+  // or kEscape, the source's low and high 16 bits and the image id.
+  static constexpr std::int16_t kEscape = INT16_MIN;
+  int home_image_ = 0;
+  std::vector<std::int64_t> code_offsets_;
+  std::vector<std::uint16_t> codes_;
 };
 
 }  // namespace rbcflow

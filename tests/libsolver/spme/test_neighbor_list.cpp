@@ -80,6 +80,19 @@ TEST(NeighborList, LargeCutoffListsAllImages) {
   expect_same_pairs(PeriodicBox(L), 2.1, random_points(10, L, 5), random_points(7, L, 6));
 }
 
+// 160,000 sources in a box 4 search cells thick: a target's pairs jump by tens of thousands of
+// source indices between planes of cells (beyond the 16-bit steps of the coded list) and
+// change images across the thin side; the pairs are still exactly the brute-force ones. The
+// list holds under 3 bytes a pair besides 40 a point (positions, orders, offsets).
+TEST(NeighborList, CodedPairsSurviveLongStepsAndImageChanges) {
+  const Eigen::Vector3d L(0.2, 3.0, 3.0);
+  const PointField xs = random_points(160000, L, 11), xt = random_points(40, L, 12);
+  expect_same_pairs(PeriodicBox(L), 0.1, xs, xt);
+  const NeighborList many(PeriodicBox(L), 0.1, xs, xs);
+  EXPECT_GT(many.n_pairs(), 200 * xs.rows());
+  EXPECT_LT(static_cast<double>(many.memory_bytes()), 3.0 * many.n_pairs() + 40.0 * 2 * xs.rows());
+}
+
 // Targets equal to the sources: the r = 0 pair is left out, the source's other images are not.
 TEST(NeighborList, CoincidentPairsAreSkipped) {
   const Eigen::Vector3d L(1.0, 1.0, 1.0);
