@@ -227,8 +227,14 @@ void BM_NeighborList(benchmark::State& state) {
   const PointField x = (random_field(13824, 7, true).array().rowwise() * side.transpose().array()).matrix();
   const double cutoff = state.range(0) / 1000.0;
   std::int64_t pairs = 0;
-  for (auto _ : state) pairs = NeighborList(box, cutoff, x, x).n_pairs();
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const NeighborList list(box, cutoff, x, x);
+    pairs = list.n_pairs();
+    bytes = list.memory_bytes();
+  }
   state.counters["pairs"] = static_cast<double>(pairs);
+  state.counters["bytes_per_pair"] = static_cast<double>(bytes) / static_cast<double>(pairs);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@
 //   nearly singular      double layer: 2 H P near targets per cell (at least 0.05 P), each
 //                        Q (12 + 24) bytes (stencil, kernel) + 2.25 kB of node entries
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
-//                        (the cells fill the lumen, not the box), 6 bytes each in the list and
+//                        (the cells fill the lumen, not the box), 2.2 bytes each in the coded
+//                        list (bench_spme BM_NeighborList) and
 //                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
 //                        one product's work arrays, 48 bytes per grid point (two arrays of 3
 //                        grids, transformed in place)
