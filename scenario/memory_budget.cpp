@@ -80,7 +80,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
       // The plans keep them only within their bound (each rank's plan holds its sources' pairs).
       m.kept_coefficients = pairs / ranks <= static_cast<double>(s.options.domain.max_kept_pairs) ? 16 * pairs : 0.0;
       const double split_bytes = 2.2 * pairs + m.kept_coefficients + nodes * (5.5 * P + 250);
-      const double work_arrays = 96.0 * K[0] * K[1] * (K[2] / 2 + 1);  // two arrays of 3 spectra
+      const double work_arrays = 64.0 * K[0] * K[1] * (K[2] / 2 + 1);  // arrays of 3 spectra and of 1
       const double split = split_bytes + (slabs ? kSplitEwaldWorkArrays * work_arrays : 0.0);
       m.parts.push_back({"cells' Ewald sum", split_bytes + work_arrays, split / (split_bytes + work_arrays)});
     }

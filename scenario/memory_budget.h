@@ -11,8 +11,8 @@
 //                        (the cells fill the lumen, not the box), 2.2 bytes each in the coded
 //                        list (bench_spme BM_NeighborList) and
 //                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
-//                        one product's work arrays, 48 bytes per grid point (two arrays of 3
-//                        grids, transformed in place)
+//                        one product's work arrays, 32 bytes per grid point (arrays of 3 grids
+//                        and of 1, transformed in place)
 //   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the
 //                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair

@@ -29,8 +29,8 @@ void check_outside_parallel_region(const char* what) {
 }  // namespace
 
 struct SlabFft::Plans {
-  std::once_flag made_forward, made_backward;
-  fftw_plan forward3 = nullptr, backward3 = nullptr;
+  std::once_flag made_forward, made_forward1, made_backward;
+  fftw_plan forward3 = nullptr, forward1 = nullptr, backward3 = nullptr;
   MPI_Comm comm = MPI_COMM_NULL;
   unsigned flags = FFTW_ESTIMATE;
   int threads = 1;
@@ -66,7 +66,7 @@ SlabFft::~SlabFft() {
   MPI_Finalized(&finalised);
   if (finalised) return;  // a grid outliving MPI (a static cache): its plans go with the process
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (fftw_plan p : {plans_->forward3, plans_->backward3})
+  for (fftw_plan p : {plans_->forward3, plans_->forward1, plans_->backward3})
     if (p) fftw_destroy_plan(p);
 }
 
@@ -98,12 +98,16 @@ fftw_plan plan_slab(const std::array<int, 3>& size, int components, bool forward
 
 }  // namespace
 
-void SlabFft::forward(fftw_complex* data) const {
+void SlabFft::forward(fftw_complex* data, int components) const {
   check_outside_parallel_region("a transform");
-  std::call_once(plans_->made_forward, [&] {
-    plans_->forward3 = plan_slab(size_, 3, true, plans_->comm, plans_->flags, plans_->threads, buffer_size(3));
+  if (components != 3 && components != 1)
+    throw std::invalid_argument("slab FFT: 3 or 1 interleaved grids, not " + std::to_string(components));
+  const bool three = components == 3;
+  std::call_once(three ? plans_->made_forward : plans_->made_forward1, [&] {
+    (three ? plans_->forward3 : plans_->forward1) = plan_slab(size_, components, true, plans_->comm, plans_->flags,
+                                                              plans_->threads, buffer_size(components));
   });
-  fftw_mpi_execute_dft_r2c(plans_->forward3, reinterpret_cast<double*>(data), data);
+  fftw_mpi_execute_dft_r2c(three ? plans_->forward3 : plans_->forward1, reinterpret_cast<double*>(data), data);
 }
 
 void SlabFft::backward(fftw_complex* data) const {
@@ -125,7 +129,7 @@ SlabFft::SlabFft(const Communicator&, const std::array<int, 3>& size, unsigned, 
 }
 SlabFft::~SlabFft() = default;
 std::size_t SlabFft::buffer_size(int) const { return 0; }
-void SlabFft::forward(fftw_complex*) const {}
+void SlabFft::forward(fftw_complex*, int) const {}
 void SlabFft::backward(fftw_complex*) const {}
 
 #endif

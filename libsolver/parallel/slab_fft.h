@@ -43,8 +43,8 @@ class SlabFft {
   // slab and spectrum block alike (FFTW's transposes may need more than the local block).
   std::size_t buffer_size(int components) const;
 
-  // Forward transform in place of 3 interleaved real slabs.
-  void forward(fftw_complex* data) const;
+  // Forward transform in place of `components` (3 or 1) interleaved real slabs.
+  void forward(fftw_complex* data, int components = 3) const;
   // Backward (unnormalised) transform in place of 3 interleaved spectra.
   void backward(fftw_complex* data) const;
 

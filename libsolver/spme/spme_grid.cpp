@@ -18,10 +18,9 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// Plans the in-place transform of 3 interleaved grids (padded real rows, FFTW's r2c layout);
+// Plans the in-place transform of C interleaved grids (padded real rows, FFTW's r2c layout);
 // the caller holds fftw_planner_mutex().
-fftw_plan plan_in_place(const std::array<int, 3>& n, bool forward, unsigned flags) {
-  constexpr int C = 3;
+fftw_plan plan_in_place(const std::array<int, 3>& n, int C, bool forward, unsigned flags) {
   const int dims[3] = {n[0], n[1], n[2]};
   const int real_rows[3] = {n[0], n[1], 2 * (n[2] / 2 + 1)};
   const int complex_rows[3] = {n[0], n[1], n[2] / 2 + 1};
@@ -82,16 +81,16 @@ void SpmeGrid::for_each_wavevector(F&& f) const {
 
 SpmeGrid::~SpmeGrid() {
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (const LazyPlan* p : {&forward3_, &backward3_})
+  for (const LazyPlan* p : {&forward3_, &forward1_, &backward3_})
     if (p->plan) fftw_destroy_plan(p->plan);
 }
 
-fftw_plan SpmeGrid::plan(LazyPlan& p, bool forward) const {
+fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward) const {
   std::call_once(p.made, [&] {
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     static const bool threads_ready = fftw_init_threads() != 0;
     if (threads_ready) fftw_plan_with_nthreads(threads_);
-    const fftw_plan made = plan_in_place(parameters_.grid, forward, flags_);
+    const fftw_plan made = plan_in_place(parameters_.grid, components, forward, flags_);
     if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
     if (!made) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
     p.plan = made;
@@ -115,14 +114,16 @@ std::size_t SpmeGrid::buffer_size(int components) const {
   return slab_ ? slab_->buffer_size(components) : components * complex_points();
 }
 
-void SpmeGrid::forward(fftw_complex* data) const {
-  if (slab_) return slab_->forward(data);
-  fftw_execute_dft_r2c(plan(forward3_, true), real_part(data), data);
+void SpmeGrid::forward(fftw_complex* data, int components) const {
+  if (components != 3 && components != 1)
+    throw std::invalid_argument("SpmeGrid::forward: 3 or 1 interleaved grids, not " + std::to_string(components));
+  if (slab_) return slab_->forward(data, components);
+  fftw_execute_dft_r2c(plan(components == 3 ? forward3_ : forward1_, components, true), real_part(data), data);
 }
 
 void SpmeGrid::backward(fftw_complex* data) const {
   if (slab_) return slab_->backward(data);
-  fftw_execute_dft_c2r(plan(backward3_, false), data, real_part(data));
+  fftw_execute_dft_c2r(plan(backward3_, 3, false), data, real_part(data));
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
@@ -144,16 +145,17 @@ void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
   });
 }
 
-void SpmeGrid::apply_stresslet(StressletHalf part, const fftw_complex* half, fftw_complex* velocity, bool add) const {
-  const Complex* D = reinterpret_cast<const Complex*>(half);
+void SpmeGrid::apply_stresslet(int first, int count, const fftw_complex* part, fftw_complex* velocity, bool add) const {
+  if (first < 0 || count < 1 || first + count > 6)
+    throw std::invalid_argument("SpmeGrid::apply_stresslet: components " + std::to_string(first) + " to " +
+                                std::to_string(first + count - 1) + " of 6");
+  const Complex* D = reinterpret_cast<const Complex*>(part);
   Complex* u = reinterpret_cast<Complex*>(velocity);
-  const bool diagonal = part == StressletHalf::diagonal;
   for_each_wavevector([&](std::size_t m, int i, int j, int l) {
-    // The six components with the other half zero (read before `u` is written: it may alias).
+    // The six components, those not given zero (read before `u` is written: it may alias).
     const Complex zero(0.0, 0.0);
-    const Complex* h = D + 3 * m;
-    const Complex d[6] = {diagonal ? h[0] : zero, diagonal ? h[1] : zero, diagonal ? h[2] : zero,
-                          diagonal ? zero : h[0], diagonal ? zero : h[1], diagonal ? zero : h[2]};
+    Complex d[6] = {zero, zero, zero, zero, zero, zero};
+    for (int c = 0; c < count; ++c) d[first + c] = D[count * m + c];
     Complex* um = u + 3 * m;
     const double s = influence_[m];
     Complex v[3] = {zero, zero, zero};

@@ -75,19 +75,19 @@ class SpmeGrid {
   // The real grids of such an array.
   static double* real_part(fftw_complex* data) { return reinterpret_cast<double*>(data); }
 
-  // Forward transform in place of 3 interleaved real grids to their spectra.
-  void forward(fftw_complex* data) const;
+  // Forward transform in place of `components` (3 or 1) interleaved real grids to their spectra.
+  void forward(fftw_complex* data, int components = 3) const;
   // Backward (unnormalised) transform in place of 3 interleaved spectra to real grids.
   void backward(fftw_complex* data) const;
 
   // Single layer, in place on 3 interleaved spectra: u^ = (1/V) S^F(k) f^ / |B|^2.
   void apply_stokeslet(fftw_complex* spectrum) const;
   // Double layer, u^ = (1/V) T^F(-k) : D^ / |B|^2 for the symmetric density D = (q n^T + n
-  // q^T)/2, linear in D and so taken a half at a time: 3 interleaved spectra of D's diagonal
-  // (xx, yy, zz) or of its off-diagonal part (xy, xz, yz) -> 3 interleaved velocity spectra,
-  // written (add false) or added (add true). `velocity` may be `half` itself.
-  enum class StressletHalf { diagonal, off_diagonal };
-  void apply_stresslet(StressletHalf part, const fftw_complex* half, fftw_complex* velocity, bool add) const;
+  // q^T)/2, linear in D and so taken in parts: the spectra of `count` consecutive components
+  // of D from `first` (in the order xx, yy, zz, xy, xz, yz), interleaved in `part`, the other
+  // components zero -> 3 interleaved velocity spectra, written (add false) or added (add true).
+  // `velocity` may be `part` itself when count is 3.
+  void apply_stresslet(int first, int count, const fftw_complex* part, fftw_complex* velocity, bool add) const;
 
  private:
   PeriodicBox box_;
@@ -98,7 +98,7 @@ class SpmeGrid {
     std::once_flag made;
     fftw_plan plan = nullptr;
   };
-  fftw_plan plan(LazyPlan& p, bool forward) const;
+  fftw_plan plan(LazyPlan& p, int components, bool forward) const;
   std::size_t spectrum_points() const;  // of this rank's spectrum (the influence function's)
   // Calls f(m, i, j, l) for every wavevector (i, j, l) of this rank's spectrum, m its index
   // there (spectra interleave their components: component c of m at C m + c); parallel.
@@ -107,7 +107,7 @@ class SpmeGrid {
 
   unsigned flags_;
   int threads_;
-  mutable LazyPlan forward3_, backward3_;
+  mutable LazyPlan forward3_, forward1_, backward3_;
   std::unique_ptr<SlabFft> slab_;  // distributed(): this rank's slab's transforms
 };
 

@@ -91,38 +91,38 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(q, n_sources(), "the double-layer density");
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
-  // The symmetric part of q n^T (T is symmetric) a half at a time, the diagonal (xx, yy, zz)
-  // then xy, xz, yz: each half spread, transformed in place and its velocity spectrum added.
-  // At most the velocity's array and one half's live together, 48 bytes a grid point (all six
-  // components at once out of place took 96): the largest memory of a product.
+  // The symmetric part of q n^T (T is symmetric) in parts: the diagonal (xx, yy, zz) spread,
+  // transformed and turned into the velocity's spectra in place, then xy, xz and yz one at a
+  // time, each in a one-component array, their velocities added. The velocity's array and one
+  // component's live together, 32 bytes a grid point (both halves of three components took 48,
+  // all six out of place 96): the largest memory of a product.
   timings_ = {};
-  std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
+  const int n = n_sources();
+  std::vector<double> density(3 * static_cast<std::size_t>(n));
   FftwBuffer<fftw_complex> velocity(grid_->buffer_size(3));
-  for (const auto part : {SpmeGrid::StressletHalf::diagonal, SpmeGrid::StressletHalf::off_diagonal}) {
-    const bool diagonal = part == SpmeGrid::StressletHalf::diagonal;
 #pragma omp parallel for schedule(static)
-    for (int s = 0; s < n_sources(); ++s) {
-      double* d = &density[3 * static_cast<std::size_t>(s)];
-      const double q0 = q(s, 0), q1 = q(s, 1), q2 = q(s, 2);
-      const double n0 = normals(s, 0), n1 = normals(s, 1), n2 = normals(s, 2);
-      if (diagonal) {
-        d[0] = q0 * n0;
-        d[1] = q1 * n1;
-        d[2] = q2 * n2;
-      } else {
-        d[0] = 0.5 * (q0 * n1 + q1 * n0);
-        d[1] = 0.5 * (q0 * n2 + q2 * n0);
-        d[2] = 0.5 * (q1 * n2 + q2 * n1);
-      }
+  for (int s = 0; s < n; ++s)
+    for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = q(s, c) * normals(s, c);
+  sources_->spread<3>(density.data(), SpmeGrid::real_part(velocity.data()));
+  timings_.spreading += seconds_since(t);
+  grid_->forward(velocity.data());
+  timings_.fft += seconds_since(t);
+  grid_->apply_stresslet(0, 3, velocity.data(), velocity.data(), false);
+  timings_.influence += seconds_since(t);
+  {
+    FftwBuffer<fftw_complex> component(grid_->buffer_size(1));
+    constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // xy, xz, yz
+    for (int c = 0; c < 3; ++c) {
+      const int a = kPairs[c][0], b = kPairs[c][1];
+#pragma omp parallel for schedule(static)
+      for (int s = 0; s < n; ++s) density[s] = 0.5 * (q(s, a) * normals(s, b) + q(s, b) * normals(s, a));
+      sources_->spread<1>(density.data(), SpmeGrid::real_part(component.data()));
+      timings_.spreading += seconds_since(t);
+      grid_->forward(component.data(), 1);
+      timings_.fft += seconds_since(t);
+      grid_->apply_stresslet(3 + c, 1, component.data(), velocity.data(), true);
+      timings_.influence += seconds_since(t);
     }
-    FftwBuffer<fftw_complex> off_diagonal(diagonal ? 0 : grid_->buffer_size(3));  // the diagonal's: `velocity`
-    fftw_complex* half = diagonal ? velocity.data() : off_diagonal.data();
-    sources_->spread<3>(density.data(), SpmeGrid::real_part(half));
-    timings_.spreading += seconds_since(t);
-    grid_->forward(half);
-    timings_.fft += seconds_since(t);
-    grid_->apply_stresslet(part, half, velocity.data(), !diagonal);
-    timings_.influence += seconds_since(t);
   }
   std::vector<double>().swap(density);
   return transform_and_interpolate(velocity);
@@ -144,11 +144,10 @@ std::size_t SpmePlan::stencil_bytes() const {
 
 std::size_t SpmePlan::work_bytes(int components) const {
   // The single layer holds its density and one array of 3 grids (transformed in place) for its
-  // product; the double layer the same for one half of its density and the velocity's array
-  // besides (double_layer()).
+  // product; the double layer the same and an array of one grid besides (double_layer()).
   const std::size_t array = grid_->buffer_size(3) * sizeof(fftw_complex);
   const std::size_t three = 3 * static_cast<std::size_t>(n_sources()) * sizeof(double) + array;
-  return components == 6 ? three + array : three;
+  return components == 6 ? three + grid_->buffer_size(1) * sizeof(fftw_complex) : three;
 }
 
 }  // namespace rbcflow

@@ -239,6 +239,7 @@ SpmeStencils::SpreadingMatrix SpmeStencils::spreading_matrix(const Eigen::Sparse
   return SpreadingMatrix(s);
 }
 
+template void SpmeStencils::spread<1>(const double*, double*) const;
 template void SpmeStencils::spread<3>(const double*, double*) const;
 template void SpmeStencils::spread<6>(const double*, double*) const;
 

@@ -73,6 +73,7 @@ class SpmeStencils {
   std::vector<int> slab_begin_;  // points of slab s: [slab_begin_[s], slab_begin_[s + 1])
 };
 
+extern template void SpmeStencils::spread<1>(const double*, double*) const;
 extern template void SpmeStencils::spread<3>(const double*, double*) const;
 extern template void SpmeStencils::spread<6>(const double*, double*) const;
 

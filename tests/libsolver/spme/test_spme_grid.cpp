@@ -96,17 +96,31 @@ TEST(SpmeGrid, InfluenceFunctionPerMode) {
     }
   }
   grid.apply_stokeslet(f.data());
-  // The two halves of D, the first written and the second added; then the same with the
-  // diagonal's spectra turned into the velocity in place: the same numbers.
-  using Half = SpmeGrid::StressletHalf;
-  grid.apply_stresslet(Half::diagonal, diagonal.data(), u.data(), false);
-  grid.apply_stresslet(Half::off_diagonal, off_diagonal.data(), u.data(), true);
-  grid.apply_stresslet(Half::diagonal, diagonal.data(), diagonal.data(), false);
-  grid.apply_stresslet(Half::off_diagonal, off_diagonal.data(), diagonal.data(), true);
+  // D in parts: the diagonal written and the off-diagonal half added, (a) as three interleaved
+  // spectra, (b) one component at a time from arrays of one spectrum, (c) with the diagonal's
+  // spectra turned into the velocity in place: the same numbers.
+  grid.apply_stresslet(0, 3, diagonal.data(), u.data(), false);
+  grid.apply_stresslet(3, 3, off_diagonal.data(), u.data(), true);
+  FftwBuffer<fftw_complex> by_parts(3 * points), one(points);
+  grid.apply_stresslet(0, 3, diagonal.data(), by_parts.data(), false);
+  for (int c = 0; c < 3; ++c) {
+    for (std::size_t m = 0; m < points; ++m)
+      for (int k = 0; k < 2; ++k) one.data()[m][k] = off_diagonal.data()[3 * m + c][k];
+    grid.apply_stresslet(3 + c, 1, one.data(), by_parts.data(), true);
+  }
+  grid.apply_stresslet(0, 3, diagonal.data(), diagonal.data(), false);
+  grid.apply_stresslet(3, 3, off_diagonal.data(), diagonal.data(), true);
+  double largest = 0, parts = 0;
   for (std::size_t i = 0; i < 3 * points; ++i) {
     ASSERT_EQ(diagonal.data()[i][0], u.data()[i][0]);
     ASSERT_EQ(diagonal.data()[i][1], u.data()[i][1]);
+    for (int k = 0; k < 2; ++k) {
+      largest = std::max(largest, std::abs(u.data()[i][k]));
+      parts = std::max(parts, std::abs(by_parts.data()[i][k] - u.data()[i][k]));
+    }
   }
+  EXPECT_LT(parts, 1e-15 * largest) << "the off-diagonal components one at a time";
+  EXPECT_THROW(grid.apply_stresslet(4, 3, off_diagonal.data(), u.data(), true), std::invalid_argument);
   const auto at = [](FftwBuffer<fftw_complex>& b, std::size_t i) {
     return Complex(b.data()[i][0], b.data()[i][1]);
   };
