@@ -221,38 +221,34 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
                            coincident_sources(nodes_.size(), first, n));
 }
 
-PairShares CellLayers::take_folded_shares(Layer layer) {
+PairShares CellLayers::take_folded_shares(Layer layer) const {
   const int np = nodes_per_cell();
-  // Calls f(cell, target row, patch nodes) for every target of the layer's corrections, and
-  // then done(correction) for each correction. Sources are numbered within the owned block
-  // (the plans' sources).
+  // Calls f(cell, target row, patch nodes) for every target of the layer's corrections with
+  // folded nodes. Sources are numbered within the owned block (the plans' sources).
   const int first = owned_.begin * np;
-  auto for_each_target = [&](auto&& f, auto&& done) {
+  auto for_each_target = [&](auto&& f) {
     for (int c = owned_.begin; c < owned_.end; ++c) {
-      LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
-      for (int t = 0; t < self.num_targets(); ++t) f(c, c * np + t, self.folded(t));
-      done(self);
-      NearCorrection& n = near_[c];
-      LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
+      const LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
+      for (int t = 0; t < self.num_targets(); ++t)
+        if (!self.folded(t).empty()) f(c, c * np + t, self.folded(t));
+      const NearCorrection& n = near_[c];
+      const LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
       if (!near) continue;
-      for (int k = 0; k < near->num_targets(); ++k) f(c, n.rows[k], near->folded(k));
-      done(*near);
+      for (int k = 0; k < near->num_targets(); ++k)
+        if (!near->folded(k).empty()) f(c, n.rows[k], near->folded(k));
     }
   };
+  // A segment per correction and target, pointing to the correction's folded nodes (which the
+  // corrections hold as long as the plans live: no copy of them at the peak of the build).
   PairShares shares;
   shares.offsets.assign(static_cast<std::size_t>(nodes_.size()) + 1, 0);
-  for_each_target([&](int, int row, std::span<const PatchNode> nodes) { shares.offsets[row + 1] += nodes.size(); },
-                  [](LayerCorrection&) {});
+  for_each_target([&](int, int row, std::span<const PatchNode>) { ++shares.offsets[row + 1]; });
   for (std::size_t r = 1; r < shares.offsets.size(); ++r) shares.offsets[r] += shares.offsets[r - 1];
-  shares.sources.resize(shares.offsets.back());
-  shares.shares.resize(shares.offsets.back());
+  shares.segments.resize(shares.offsets.back());
   std::vector<std::int64_t> next(shares.offsets.begin(), shares.offsets.end() - 1);
   for_each_target([&](int c, int row, std::span<const PatchNode> nodes) {
-    for (const PatchNode& e : nodes) {
-      shares.sources[next[row]] = c * np + e.node - first;
-      shares.shares[next[row]++] = e.eta;
-    }
-  }, [](LayerCorrection& k) { k.release_folded(); });
+    shares.segments[next[row]++] = {nodes.data(), static_cast<std::int32_t>(nodes.size()), c * np - first};
+  });
   return shares;
 }
 

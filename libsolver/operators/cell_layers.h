@@ -110,9 +110,9 @@ class CellLayers {
     return stacked.middleRows(owned_.begin * nodes_per_cell(), owned_.size() * nodes_per_cell());
   }
   bool owns_all() const { return owned_.size() == num_cells(); }
-  // The patch nodes the layer's corrections left to the real-space sum, by target row; each
-  // correction's folded nodes are freed once taken.
-  PairShares take_folded_shares(Layer layer);
+  // The patch nodes the layer's corrections left to the real-space sum, by target row, as
+  // segments of the corrections' folded nodes (which therefore live as long as the plans).
+  PairShares take_folded_shares(Layer layer) const;
   Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
 
   std::shared_ptr<const CellGrids> grids_;

@@ -24,6 +24,7 @@
 
 #include "geometry/surface/cell_grids.h"
 #include "geometry/surface/sh_surface.h"
+#include "libsolver/common/patch_node.h"
 #include "libsolver/common/memory_report.h"
 #include "libsolver/quadrature/hermite_interpolation.h"
 #include "libsolver/quadrature/layer_kernel.h"
@@ -98,16 +99,6 @@ class CellQuadratureGeometry {
 // rank builds (operators/cell_layers.h).
 SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids);
 
-// A node of the regular rule inside a target's patch, with its partition-of-unity weight eta:
-// the share of that node's regular term which the patch integral I_1 replaces.
-// eta is kept in single precision (8 bytes a node): every correction folds or removes this same
-// rounded share, as the real-space sums keep it (real_space_sum.h PairShares), so folding a node
-// stays exact; the rounding (~6e-8) is far below the patch rule's error.
-struct PatchNode {
-  int node;
-  float eta;
-};
-
 class LayerCorrection {
  public:
   // fold_radius: nodes of the patch closer than this to the target are left to the caller's
@@ -124,16 +115,11 @@ class LayerCorrection {
 
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
-  // The patch nodes of target t whose share the caller removes (see fold_radius); empty for
-  // every target after release_folded().
+  // The patch nodes of target t whose share the caller removes (see fold_radius), held as long
+  // as the correction (the pair shares of the caller's real-space sums point to them).
   std::span<const PatchNode> folded(int t) const {
     if (folded_offsets_.empty()) return {};
     return {folded_.data() + folded_offsets_[t], static_cast<std::size_t>(folded_offsets_[t + 1] - folded_offsets_[t])};
-  }
-  // Frees the folded nodes once the caller has taken them (its real-space sum's pair shares).
-  void release_folded() {
-    std::vector<PatchNode>().swap(folded_);
-    std::vector<std::int64_t>().swap(folded_offsets_);
   }
   // Correction at every target for the density given at the cell's nodes (nodes x 3); the
   // patch sees its expansion of order N (exact for the band-limited densities of the solver).

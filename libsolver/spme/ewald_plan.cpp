@@ -156,7 +156,7 @@ void EwaldPlan::report_memory(MemoryReport& report, const std::string& prefix) c
   if (neighbors_) report.add(prefix + ": neighbour list", neighbors_->memory_bytes());
   report.add(prefix + ": kept pair coefficients", heap_bytes(single_coefficients_) + heap_bytes(double_coefficients_));
   report.add(prefix + ": B-spline stencils", smooth_.stencil_bytes());
-  report.add(prefix + ": pair shares", heap_bytes(shares_.offsets) + heap_bytes(shares_.sources) + heap_bytes(shares_.shares));
+  report.add(prefix + ": pair shares", shares_.memory_bytes());
   // Work arrays live for one product, and products run one at a time: the largest counts.
   report.add_max("SPME work arrays (one product at a time)", smooth_.work_bytes(double_products_ ? 6 : 3));
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "libsolver/common/memory_report.h"
 #include "libsolver/kernels/ewald_real_kernel.h"
 
 namespace rbcflow {
@@ -47,17 +48,20 @@ class ShareLookup {
   ShareLookup(const NeighborList& pairs, const PairShares* shares)
       : shares_(shares && !shares->offsets.empty() ? shares : nullptr) {
     if (!shares_) return;
-    const auto n_entries = static_cast<std::int64_t>(shares_->sources.size());
+    const auto n_segments = static_cast<std::int64_t>(shares_->segments.size());
     if (shares_->offsets.size() != static_cast<std::size_t>(pairs.n_targets()) + 1 || shares_->offsets.front() != 0 ||
-        shares_->offsets.back() != n_entries || shares_->shares.size() != shares_->sources.size())
+        shares_->offsets.back() != n_segments)
       throw std::invalid_argument("real-space Ewald sum: the pair shares do not fit the " +
                                   std::to_string(pairs.n_targets()) + " targets");
     rank_.resize(pairs.n_sources());
     for (int i = 0; i < pairs.n_sources(); ++i) rank_[pairs.order()[i]] = i;
-    for (int s : shares_->sources)
-      if (s < 0 || s >= pairs.n_sources())
-        throw std::invalid_argument("real-space Ewald sum: a pair share names source " + std::to_string(s) + " of " +
-                                    std::to_string(pairs.n_sources()));
+    for (const PairShares::Segment& g : shares_->segments)
+      for (int e = 0; e < g.count; ++e) {
+        const int s = g.first_source + g.nodes[e].node;
+        if (s < 0 || s >= pairs.n_sources())
+          throw std::invalid_argument("real-space Ewald sum: a pair share names source " + std::to_string(s) + " of " +
+                                      std::to_string(pairs.n_sources()));
+      }
     const double half_side = 0.5 * pairs.box().lengths().minCoeff();
     nearest_image2_ = half_side * half_side;
   }
@@ -69,12 +73,11 @@ class ShareLookup {
   // Adds target t's shares to `work`; false when it has none.
   bool scatter(int t, std::vector<double>& work) const {
     if (!shares_ || shares_->offsets[t] == shares_->offsets[t + 1]) return false;
-    for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i)
-      work[rank_[shares_->sources[i]]] += shares_->shares[i];
+    for_each_share(t, [&](int s, float eta) { work[rank_[s]] += eta; });
     return true;
   }
   void clear(int t, std::vector<double>& work) const {
-    for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i) work[rank_[shares_->sources[i]]] = 0.0;
+    for_each_share(t, [&](int s, float) { work[rank_[s]] = 0.0; });
   }
   // The weight of sorted source s at squared distance r2 (its other images keep weight 1).
   double weight(int s, double r2, const std::vector<double>& work) const {
@@ -82,6 +85,14 @@ class ShareLookup {
   }
 
  private:
+  template <class F>
+  void for_each_share(int t, F&& f) const {
+    for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i) {
+      const PairShares::Segment& g = shares_->segments[i];
+      for (int e = 0; e < g.count; ++e) f(g.first_source + g.nodes[e].node, g.nodes[e].eta);
+    }
+  }
+
   const PairShares* shares_;
   std::vector<int> rank_;  // caller's source index -> sorted
   double nearest_image2_ = 0.0;
@@ -112,6 +123,26 @@ PointField sum_over_pairs(const NeighborList& pairs, const ShareLookup& lookup, 
 }
 
 }  // namespace
+
+PairShares PairShares::from_lists(std::vector<std::int64_t> offsets, const std::vector<int>& sources,
+                                  const std::vector<float>& shares) {
+  if (sources.size() != shares.size() || (!offsets.empty() && (offsets.front() != 0 ||
+                                                               offsets.back() != static_cast<std::int64_t>(sources.size()))))
+    throw std::invalid_argument("pair shares: " + std::to_string(sources.size()) + " sources, " +
+                                std::to_string(shares.size()) + " shares and offsets that do not fit them");
+  PairShares p;
+  p.held.resize(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) p.held[i] = {sources[i], shares[i]};
+  p.offsets.assign(offsets.size(), 0);
+  for (std::size_t t = 0; t + 1 < offsets.size(); ++t) {
+    const std::int64_t n = offsets[t + 1] - offsets[t];
+    p.offsets[t + 1] = p.offsets[t] + (n > 0 ? 1 : 0);
+    if (n > 0) p.segments.push_back({p.held.data() + offsets[t], static_cast<std::int32_t>(n), 0});
+  }
+  return p;
+}
+
+std::size_t PairShares::memory_bytes() const { return heap_bytes(offsets) + heap_bytes(segments) + heap_bytes(held); }
 
 double pair_share_radius(const PeriodicBox& box, double cutoff) {
   return (1.0 - 1e-9) * std::min(cutoff, 0.5 * box.lengths().minCoeff());

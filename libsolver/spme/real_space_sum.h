@@ -5,23 +5,40 @@
 #include <vector>
 
 #include "neighbor_list.h"
+#include "libsolver/common/patch_node.h"
 #include "libsolver/common/periodic_box.h"
 
 namespace rbcflow {
 
 // Pairs that count with weight 1 - share: the part of their integral that another rule supplies
 // (the patches of the singular quadrature, where the regular rule's share is eta, the
-// partition of unity: quadrature/singular_quadrature.h). CSR over the caller's targets:
-// offsets[t] .. offsets[t + 1] index sources (the caller's indices) and shares; a source may
-// appear more than once (the shares add). A pair is weighted at its nearest image only, which
-// must lie within the cutoff and within half the shortest box side (else it is not weighted).
-// Empty offsets: no weighted pair. The shares are kept in single precision (8 bytes a pair
-// with the source against 12), as the singular corrections keep their eta (singular_quadrature.h
-// PatchNode).
+// partition of unity: quadrature/singular_quadrature.h). Per caller's target t, the segments
+// [offsets[t], offsets[t + 1]): node e of a segment is the caller's source first_source + e.node
+// with share e.eta; a source may appear more than once (the shares add). The nodes are held by
+// whoever built them, the singular corrections' folded nodes (operators/cell_layers.h), which
+// must outlive the sums, or by `held` (from_lists). A pair is weighted at its nearest image
+// only, which must lie within the cutoff and within half the shortest box side (else it is not
+// weighted). Empty offsets: no weighted pair. Move-only: the segments may point into `held`.
 struct PairShares {
+  struct Segment {
+    const PatchNode* nodes;
+    std::int32_t count;
+    std::int32_t first_source;
+  };
   std::vector<std::int64_t> offsets;
-  std::vector<int> sources;
-  std::vector<float> shares;
+  std::vector<Segment> segments;
+  std::vector<PatchNode> held;
+
+  PairShares() = default;
+  PairShares(PairShares&&) = default;
+  PairShares& operator=(PairShares&&) = default;
+  PairShares(const PairShares&) = delete;
+  PairShares& operator=(const PairShares&) = delete;
+  // One segment per target over `held`: target t's sources and shares are entries
+  // [offsets[t], offsets[t + 1]) of the lists.
+  static PairShares from_lists(std::vector<std::int64_t> offsets, const std::vector<int>& sources,
+                               const std::vector<float>& shares);
+  std::size_t memory_bytes() const;  // what it holds itself: offsets, segments, held nodes
 };
 
 // Pairs closer than this are in a list of this cutoff at their nearest image, whatever the

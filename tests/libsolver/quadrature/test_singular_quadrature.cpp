@@ -220,16 +220,15 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> periodic_layers(const std::shared_pt
   auto close = LayerCorrection::single_and_double(cell, xi_s, xi_d, near, radius);
   folded = 0;
   auto shares = [&](const LayerCorrection& s, const LayerCorrection& c) {
+    // A segment per target pointing to the corrections' folded nodes, as CellLayers leaves them.
     PairShares p;
     p.offsets.push_back(0);
     for (int t = 0; t < n + k; ++t) {
-      for (const PatchNode& e : t < n ? s.folded(t) : c.folded(t - n)) {
-        p.sources.push_back(e.node);
-        p.shares.push_back(e.eta);
-      }
-      p.offsets.push_back(static_cast<std::int64_t>(p.sources.size()));
+      const std::span<const PatchNode> patch = t < n ? s.folded(t) : c.folded(t - n);
+      if (!patch.empty()) p.segments.push_back({patch.data(), static_cast<std::int32_t>(patch.size()), 0});
+      p.offsets.push_back(static_cast<std::int64_t>(p.segments.size()));
+      folded += patch.size();
     }
-    folded += p.sources.size();
     return p;
   };
   EwaldPlan single(grid[0], nodes.x, targets, shares(*self.first, *close.first));

@@ -67,8 +67,6 @@ TEST(RealSpaceSum, SharedPairsCountWithWeightOneMinusShare) {
   for (double cutoff : {0.3, 0.85}) {  // below and above half the shortest side (0.35)
     const NeighborList pairs(box, cutoff, xs, xt);
     const double radius = pair_share_radius(box, cutoff);
-    PairShares shares;
-    shares.offsets.push_back(0);
     std::vector<std::vector<std::pair<int, double>>> by_target(xt.rows());
     for (int t = 0; t < xt.rows(); ++t) {
       for (int s = t % 3; s < xs.rows(); s += 3) {
@@ -80,13 +78,27 @@ TEST(RealSpaceSum, SharedPairsCountWithWeightOneMinusShare) {
         by_target[t].push_back({s, share});
         if (by_target[t].size() == 1) by_target[t].push_back({s, 0.0625});  // named twice: 0.0625 more
       }
-      for (const auto& [s, share] : by_target[t]) {
-        shares.sources.push_back(s);
-        shares.shares.push_back(static_cast<float>(share));
-      }
-      shares.offsets.push_back(static_cast<std::int64_t>(shares.sources.size()));
     }
-    ASSERT_GT(shares.sources.size(), 100u);
+    // Each target's shares in two segments, as the corrections of two cells leave them: all but
+    // the last with the sources as nodes, the last numbered from source -1 (node s + 1).
+    PairShares shares;
+    std::size_t entries = 0;
+    for (const auto& list : by_target) entries += list.size();
+    shares.held.reserve(entries);
+    shares.offsets.push_back(0);
+    for (int t = 0; t < xt.rows(); ++t) {
+      const auto& list = by_target[t];
+      const std::size_t start = shares.held.size();
+      for (std::size_t e = 0; e < list.size(); ++e) {
+        const bool last = e + 1 == list.size();
+        shares.held.push_back({last ? list[e].first + 1 : list[e].first, static_cast<float>(list[e].second)});
+      }
+      if (list.size() > 1)
+        shares.segments.push_back({shares.held.data() + start, static_cast<std::int32_t>(list.size() - 1), 0});
+      if (!list.empty()) shares.segments.push_back({shares.held.data() + start + list.size() - 1, 1, -1});
+      shares.offsets.push_back(static_cast<std::int64_t>(shares.segments.size()));
+    }
+    ASSERT_GT(entries, 100u);
     std::vector<double> single, double_;
     for (unsigned seed : {41u, 42u}) {  // the first fills the kept coefficients, the second reads them
       const PointField f = random_vectors(120, seed), q = random_vectors(120, seed + 10),
@@ -116,13 +128,12 @@ TEST(RealSpaceSum, RejectsSharesThatDoNotFit) {
   const PeriodicBox box(Eigen::Vector3d::Ones());
   const PointField x = random_points(10, Eigen::Vector3d::Ones(), 1);
   const NeighborList pairs(box, 0.3, x, x);
-  PairShares wrong_targets{{0, 0, 0}, {}, {}};
+  const PairShares wrong_targets = PairShares::from_lists({0, 0, 0}, {}, {});
   EXPECT_THROW(real_space_single_layer(pairs, 5.0, random_vectors(10, 1), nullptr, &wrong_targets),
                std::invalid_argument);
-  PairShares bad_source{std::vector<std::int64_t>(11, 0), {}, {}};
-  for (std::size_t t = 1; t < bad_source.offsets.size(); ++t) bad_source.offsets[t] = 1;
-  bad_source.sources = {10};
-  bad_source.shares = {0.5};
+  std::vector<std::int64_t> offsets(11, 1);
+  offsets[0] = 0;
+  const PairShares bad_source = PairShares::from_lists(offsets, {10}, {0.5f});
   EXPECT_THROW(real_space_double_layer(pairs, 5.0, random_vectors(10, 1), random_vectors(10, 2), nullptr, &bad_source),
                std::invalid_argument);
 }
