@@ -80,7 +80,9 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
       // The plans keep them only within their bound (each rank's plan holds its sources' pairs).
       m.kept_coefficients = pairs / ranks <= static_cast<double>(s.options.domain.max_kept_pairs) ? 16 * pairs : 0.0;
       const double split_bytes = 2.2 * pairs + m.kept_coefficients + nodes * (5.5 * P + 250);
-      const double work_arrays = 64.0 * K[0] * K[1] * (K[2] / 2 + 1);  // arrays of 3 spectra and of 1
+      const double spectra = 16.0 * K[0] * K[1] * (K[2] / 2 + 1);  // of one grid
+      const double work_arrays = 6 * spectra;                         // two arrays of 3 grids
+      m.lean_transforms = 2 * spectra;  // one of them of 1 grid (SpmePlan::transform_lean)
       const double split = split_bytes + (slabs ? kSplitEwaldWorkArrays * work_arrays : 0.0);
       m.parts.push_back({"cells' Ewald sum", split_bytes + work_arrays, split / (split_bytes + work_arrays)});
     }
@@ -110,14 +112,19 @@ void apply_memory_budget(Scenario& s, RankLayout layout) {
   s.memory = estimate_memory(s, layout.ranks);
   s.memory_budget = s.options.domain.ranks.min(memory_budget(s.c, layout.per_machine));
   s.ranks_per_machine = layout.per_machine;
+  s.reuses_freed_memory = s.memory.total() <= kReuseFreedMemory * s.memory_budget;
+  if (!s.reuses_freed_memory && s.memory.lean_transforms > 0) {
+    // Memory is short: the double layer's transforms go lean too.
+    for (MemoryEstimate::Part& p : s.memory.parts)
+      if (p.name == "cells' Ewald sum") p.bytes -= s.memory.lean_transforms;
+    s.options.domain.lean_transforms = true;
+  }
   const double total = s.memory.total();
-  s.reuses_freed_memory = total <= kReuseFreedMemory * s.memory_budget;
   if (total <= s.memory_budget) return;
   const double without = total - kPeakFactor * s.memory.kept_coefficients / layout.ranks;
   if (s.memory.kept_coefficients > 0 && without <= s.memory_budget) {
     s.options.domain.max_kept_pairs = 0;
     s.keeps_pair_coefficients = false;
-    s.reuses_freed_memory = false;
     return;
   }
   std::string parts;

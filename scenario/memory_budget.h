@@ -11,8 +11,8 @@
 //                        (the cells fill the lumen, not the box), 2.2 bytes each in the coded
 //                        list (bench_spme BM_NeighborList) and
 //                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
-//                        one product's work arrays, 32 bytes per grid point (arrays of 3 grids
-//                        and of 1, transformed in place)
+//                        one product's work arrays, 48 bytes per grid point (two arrays of 3
+//                        grids, transformed in place; 32 with lean transforms, below)
 //   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the
 //                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair
@@ -55,6 +55,7 @@ struct MemoryEstimate {
   };
   std::vector<Part> parts;
   double kept_coefficients = 0;  // of the cells' Ewald part (split): what not keeping them saves
+  double lean_transforms = 0;    // of the cells' Ewald part: what lean transforms save
   int ranks = 1;
   double on_each_rank(const Part& p) const { return p.bytes * (1.0 - p.split + p.split / ranks); }
   double total() const;  // the peak of each rank: 1.3 x its parts + the program
@@ -72,7 +73,9 @@ double memory_budget(const Case& c, int ranks_per_machine = 1);
 // throws CaseError naming solver.memory_gib with the estimate and what to change. `layout`:
 // the run's ranks and those on this rank's machine. A run whose estimate is above 3/4 of its
 // budget has its freed memory returned to the system instead of kept for the next steps
-// (s.reuses_freed_memory; libsolver/stepper/step_memory.h). In a run on several ranks
+// (s.reuses_freed_memory; libsolver/stepper/step_memory.h) and the double layer's transforms
+// lean (s.options.domain.lean_transforms: 32 bytes a grid point instead of 48, the estimate's
+// part lowered by that). In a run on several ranks
 // (s.options.domain.ranks) every rank takes the decision of the smallest of the ranks'
 // budgets, so that all hold the same operators.
 void apply_memory_budget(Scenario& s, RankLayout layout);

@@ -171,6 +171,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       ScopedTimer double_timer(timings_.geometry);
       double_plan_ = plan(double_grid, Layer::double_);
       double_plan_->keep_pairs_up_to(domain_.max_kept_pairs);
+      double_plan_->transform_lean(domain_.lean_transforms);
     }
   }
   if (single_density_) {

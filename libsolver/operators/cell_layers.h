@@ -57,6 +57,7 @@ struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
   std::int64_t max_kept_pairs = kMaxKeptPairs;  // the Ewald plans' bound (ewald_plan.h)
+  bool lean_transforms = false;  // the double layer's density a component at a time (SpmePlan::transform_lean)
   Communicator ranks{};  // the ranks that share the products (default: one)
 };
 

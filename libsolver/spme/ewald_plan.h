@@ -101,6 +101,8 @@ class EwaldPlan {
   // Keep the pair coefficients only for lists of at most n pairs (default kMaxKeptPairs; 0:
   // never), for a memory budget or a plan applied once.
   void keep_pairs_up_to(std::int64_t n) { max_kept_pairs_ = n; }
+  // The smooth part's double layer transformed lean (SpmePlan::transform_lean), for a budget.
+  void transform_lean(bool lean) { smooth_.transform_lean(lean); }
   // Throws std::logic_error after release_real_space().
   const NeighborList& neighbors() const;
   // Frees the neighbour list, for a caller that has assembled the real-space part itself

@@ -92,10 +92,10 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   check_rows(normals, n_sources(), "the normal field");
   auto t = std::chrono::steady_clock::now();
   // The symmetric part of q n^T (T is symmetric) in parts: the diagonal (xx, yy, zz) spread,
-  // transformed and turned into the velocity's spectra in place, then xy, xz and yz one at a
-  // time, each in a one-component array, their velocities added. The velocity's array and one
-  // component's live together, 32 bytes a grid point (both halves of three components took 48,
-  // all six out of place 96): the largest memory of a product.
+  // transformed and turned into the velocity's spectra in place, then the off-diagonal part
+  // (xy, xz, yz) in an array of its own, its velocity added: the three components together
+  // (48 bytes a grid point with the velocity's array) or, lean, one at a time (32 bytes; all six
+  // out of place took 96): the largest memory of a product.
   timings_ = {};
   const int n = n_sources();
   std::vector<double> density(3 * static_cast<std::size_t>(n));
@@ -110,17 +110,25 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   grid_->apply_stresslet(0, 3, velocity.data(), velocity.data(), false);
   timings_.influence += seconds_since(t);
   {
-    FftwBuffer<fftw_complex> component(grid_->buffer_size(1));
+    const int width = lean_ ? 1 : 3;
+    FftwBuffer<fftw_complex> part(grid_->buffer_size(width));
     constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // xy, xz, yz
-    for (int c = 0; c < 3; ++c) {
-      const int a = kPairs[c][0], b = kPairs[c][1];
+    for (int first = 0; first < 3; first += width) {
 #pragma omp parallel for schedule(static)
-      for (int s = 0; s < n; ++s) density[s] = 0.5 * (q(s, a) * normals(s, b) + q(s, b) * normals(s, a));
-      sources_->spread<1>(density.data(), SpmeGrid::real_part(component.data()));
+      for (int s = 0; s < n; ++s)
+        for (int c = 0; c < width; ++c) {
+          const int a = kPairs[first + c][0], b = kPairs[first + c][1];
+          density[width * static_cast<std::size_t>(s) + c] = 0.5 * (q(s, a) * normals(s, b) + q(s, b) * normals(s, a));
+        }
+      if (lean_) {
+        sources_->spread<1>(density.data(), SpmeGrid::real_part(part.data()));
+      } else {
+        sources_->spread<3>(density.data(), SpmeGrid::real_part(part.data()));
+      }
       timings_.spreading += seconds_since(t);
-      grid_->forward(component.data(), 1);
+      grid_->forward(part.data(), width);
       timings_.fft += seconds_since(t);
-      grid_->apply_stresslet(3 + c, 1, component.data(), velocity.data(), true);
+      grid_->apply_stresslet(3 + first, width, part.data(), velocity.data(), true);
       timings_.influence += seconds_since(t);
     }
   }
@@ -144,10 +152,11 @@ std::size_t SpmePlan::stencil_bytes() const {
 
 std::size_t SpmePlan::work_bytes(int components) const {
   // The single layer holds its density and one array of 3 grids (transformed in place) for its
-  // product; the double layer the same and an array of one grid besides (double_layer()).
+  // product; the double layer the same and an array of 3 grids or, lean, of one besides
+  // (double_layer()).
   const std::size_t array = grid_->buffer_size(3) * sizeof(fftw_complex);
   const std::size_t three = 3 * static_cast<std::size_t>(n_sources()) * sizeof(double) + array;
-  return components == 6 ? three + grid_->buffer_size(1) * sizeof(fftw_complex) : three;
+  return components == 6 ? three + grid_->buffer_size(lean_ ? 1 : 3) * sizeof(fftw_complex) : three;
 }
 
 }  // namespace rbcflow

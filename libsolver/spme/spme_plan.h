@@ -52,6 +52,12 @@ class SpmePlan {
   std::size_t stencil_bytes() const;
   std::size_t work_bytes(int components) const;
 
+  // How double_layer transforms the off-diagonal half of its density (xy, xz, yz): the three
+  // components together in an array of 3 grids (the default: 48 bytes a grid point with the
+  // velocity's array), or lean, one at a time in an array of one grid (32 bytes a grid point;
+  // its transforms take up to 1.5x as long: docs/performance.md), for a memory budget.
+  void transform_lean(bool lean) { lean_ = lean; }
+
   const SpmeTimings& timings() const { return timings_; }
 
  private:
@@ -64,6 +70,7 @@ class SpmePlan {
   std::shared_ptr<const SpmeGrid> grid_;
   std::shared_ptr<const SpmeStencils> sources_, targets_;
   SpmeTimings timings_;
+  bool lean_ = false;
 };
 
 }  // namespace rbcflow

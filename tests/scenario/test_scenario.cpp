@@ -162,7 +162,8 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
 }
 
 // A run far below its budget keeps what its steps free for the next steps; one above 3/4 of it
-// returns it (libsolver/stepper/step_memory.h), with or without the kept pair coefficients.
+// returns it (libsolver/stepper/step_memory.h), with or without the kept pair coefficients, and
+// transforms its double layer lean, its estimate lowered by an array of 2 grids of 3.
 TEST(Scenario, FreedMemoryIsKeptOnlyFarBelowTheBudget) {
   const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
                            "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = 0.3\n";
@@ -172,11 +173,17 @@ TEST(Scenario, FreedMemoryIsKeptOnlyFarBelowTheBudget) {
     return prepare_scenario(parse_case(tube + "[solver]\nmemory_gib = " + std::to_string(total / fraction / gib) + "\n",
                                        "m.toml"));
   };
-  EXPECT_TRUE(with_budget(0.7).reuses_freed_memory);
+  const Scenario far = with_budget(0.7);
+  EXPECT_TRUE(far.reuses_freed_memory);
+  EXPECT_FALSE(far.options.domain.lean_transforms);
   const Scenario close = with_budget(0.8);
   EXPECT_FALSE(close.reuses_freed_memory);
   EXPECT_TRUE(close.keeps_pair_coefficients);
-  const Scenario over = with_budget(1.02);  // fits only without the kept coefficients
+  EXPECT_TRUE(close.options.domain.lean_transforms);
+  ASSERT_GT(far.memory.lean_transforms, 0.0);
+  EXPECT_NEAR(far.memory.total() - close.memory.total(), 1.3 * far.memory.lean_transforms, 1e-6 * far.memory.total());
+  // Fits only without the kept coefficients: a budget 2% under the lean estimate.
+  const Scenario over = with_budget(1.02 * total / (total - 1.3 * far.memory.lean_transforms));
   EXPECT_FALSE(over.keeps_pair_coefficients);
   EXPECT_FALSE(over.reuses_freed_memory);
 }
