@@ -55,6 +55,9 @@ SlabFft::SlabFft(const Communicator& ranks, const std::array<int, 3>& size, unsi
   alloc3_ = static_cast<std::size_t>(fftw_mpi_local_size_many_transposed(
       3, n, 3, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, plans_->comm, &local_n0, &local_0_start, &local_n1,
       &local_1_start));
+  ptrdiff_t n0 = 0, s0 = 0, n1 = 0, s1 = 0;
+  alloc1_ = static_cast<std::size_t>(fftw_mpi_local_size_many_transposed(
+      3, n, 1, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, plans_->comm, &n0, &s0, &n1, &s1));
   first_plane_ = static_cast<int>(local_0_start);
   planes_ = static_cast<int>(local_n0);
   first_row_ = static_cast<int>(local_1_start);
@@ -74,7 +77,7 @@ std::size_t SlabFft::buffer_size(int components) const {
   const std::size_t n3 = size_[2] / 2 + 1;
   const std::size_t slab = static_cast<std::size_t>(planes_) * size_[1] * n3 * components;
   const std::size_t block = static_cast<std::size_t>(rows_) * size_[0] * n3 * components;
-  return std::max({slab, block, alloc3_ / 3 * components});
+  return std::max({slab, block, components == 1 ? alloc1_ : alloc3_ / 3 * components});
 }
 
 namespace {

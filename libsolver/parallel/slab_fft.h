@@ -52,7 +52,7 @@ class SlabFft {
   struct Plans;
   std::array<int, 3> size_;
   int first_plane_ = 0, planes_ = 0, first_row_ = 0, rows_ = 0;
-  std::size_t alloc3_ = 0;  // complex numbers FFTW asks for, 3 components
+  std::size_t alloc3_ = 0, alloc1_ = 0;  // complex numbers FFTW asks for, 3 components and 1
   std::unique_ptr<Plans> plans_;
 };
 
