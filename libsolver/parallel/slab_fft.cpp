@@ -82,42 +82,63 @@ std::size_t SlabFft::buffer_size(int components) const {
 
 namespace {
 
-// Plans one transform in place on an array of the size FFTW asked for (planning may overwrite it).
+// Plans one transform in place on `data`, an array of the size FFTW asked for (planning
+// overwrites it), or on an array of its own when `data` is null.
 fftw_plan plan_slab(const std::array<int, 3>& size, int components, bool forward, MPI_Comm comm, unsigned flags,
-                    int threads, std::size_t buffer_size) {
+                    int threads, std::size_t buffer_size, fftw_complex* data) {
   const ptrdiff_t n[3] = {size[0], size[1], size[2]};
-  FftwBuffer<fftw_complex> data(buffer_size);
-  double* real = reinterpret_cast<double*>(data.data());
+  FftwBuffer<fftw_complex> own(data ? 0 : buffer_size);
+  if (!data) data = own.data();
+  double* real = reinterpret_cast<double*>(data);
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   fftw_plan_with_nthreads(threads);
   fftw_plan p = forward ? fftw_mpi_plan_many_dft_r2c(3, n, components, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK,
-                                                     real, data.data(), comm, flags | FFTW_MPI_TRANSPOSED_OUT)
+                                                     real, data, comm, flags | FFTW_MPI_TRANSPOSED_OUT)
                         : fftw_mpi_plan_many_dft_c2r(3, n, components, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK,
-                                                     data.data(), real, comm, flags | FFTW_MPI_TRANSPOSED_IN);
+                                                     data, real, comm, flags | FFTW_MPI_TRANSPOSED_IN);
   fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
   if (!p) throw std::runtime_error("slab FFT: FFTW could not plan the distributed grid transform");
   return p;
 }
 
-}  // namespace
-
-void SlabFft::forward(fftw_complex* data, int components) const {
-  check_outside_parallel_region("a transform");
+void check_components(int components) {
   if (components != 3 && components != 1)
     throw std::invalid_argument("slab FFT: 3 or 1 interleaved grids, not " + std::to_string(components));
+}
+
+}  // namespace
+
+void SlabFft::plan_forward(int components, fftw_complex* on) const {
   const bool three = components == 3;
   std::call_once(three ? plans_->made_forward : plans_->made_forward1, [&] {
     (three ? plans_->forward3 : plans_->forward1) = plan_slab(size_, components, true, plans_->comm, plans_->flags,
-                                                              plans_->threads, buffer_size(components));
+                                                              plans_->threads, buffer_size(components), on);
   });
-  fftw_mpi_execute_dft_r2c(three ? plans_->forward3 : plans_->forward1, reinterpret_cast<double*>(data), data);
+}
+
+void SlabFft::plan_backward(fftw_complex* on) const {
+  std::call_once(plans_->made_backward, [&] {
+    plans_->backward3 = plan_slab(size_, 3, false, plans_->comm, plans_->flags, plans_->threads, buffer_size(3), on);
+  });
+}
+
+void SlabFft::plan_on(fftw_complex* data, int components) const {
+  check_outside_parallel_region("planning a transform");
+  check_components(components);
+  plan_forward(components, data);
+  if (components == 3) plan_backward(data);
+}
+
+void SlabFft::forward(fftw_complex* data, int components) const {
+  check_outside_parallel_region("a transform");
+  check_components(components);
+  plan_forward(components, nullptr);
+  fftw_mpi_execute_dft_r2c(components == 3 ? plans_->forward3 : plans_->forward1, reinterpret_cast<double*>(data), data);
 }
 
 void SlabFft::backward(fftw_complex* data) const {
   check_outside_parallel_region("a transform");
-  std::call_once(plans_->made_backward, [&] {
-    plans_->backward3 = plan_slab(size_, 3, false, plans_->comm, plans_->flags, plans_->threads, buffer_size(3));
-  });
+  plan_backward(nullptr);
   fftw_mpi_execute_dft_c2r(plans_->backward3, data, reinterpret_cast<double*>(data));
 }
 
@@ -132,6 +153,9 @@ SlabFft::SlabFft(const Communicator&, const std::array<int, 3>& size, unsigned, 
 }
 SlabFft::~SlabFft() = default;
 std::size_t SlabFft::buffer_size(int) const { return 0; }
+void SlabFft::plan_forward(int, fftw_complex*) const {}
+void SlabFft::plan_backward(fftw_complex*) const {}
+void SlabFft::plan_on(fftw_complex*, int) const {}
 void SlabFft::forward(fftw_complex*, int) const {}
 void SlabFft::backward(fftw_complex*) const {}
 

@@ -43,6 +43,12 @@ class SlabFft {
   // slab and spectrum block alike (FFTW's transposes may need more than the local block).
   std::size_t buffer_size(int components) const;
 
+  // Plans the transforms of `components` (3 or 1) interleaved grids (forward, and backward for
+  // 3) on `data`, an array of buffer_size(components), unless they are planned: planning
+  // overwrites it, so call this before anything is written there. A transform planned here
+  // needs no array of its own to be planned on (forward() and backward() plan on one they
+  // allocate, as large as the caller's, if nothing was planned before).
+  void plan_on(fftw_complex* data, int components) const;
   // Forward transform in place of `components` (3 or 1) interleaved real slabs.
   void forward(fftw_complex* data, int components = 3) const;
   // Backward (unnormalised) transform in place of 3 interleaved spectra.
@@ -50,6 +56,9 @@ class SlabFft {
 
  private:
   struct Plans;
+  // Plan the transform unless planned: on `on`, or on an array of their own when it is null.
+  void plan_forward(int components, fftw_complex* on) const;
+  void plan_backward(fftw_complex* on) const;
   std::array<int, 3> size_;
   int first_plane_ = 0, planes_ = 0, first_row_ = 0, rows_ = 0;
   std::size_t alloc3_ = 0, alloc1_ = 0;  // complex numbers FFTW asks for, 3 components and 1

@@ -18,16 +18,18 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// Plans the in-place transform of C interleaved grids (padded real rows, FFTW's r2c layout);
-// the caller holds fftw_planner_mutex().
-fftw_plan plan_in_place(const std::array<int, 3>& n, int C, bool forward, unsigned flags) {
+// Plans the in-place transform of C interleaved grids (padded real rows, FFTW's r2c layout) on
+// `data` (planning overwrites it), or on an array of its own when `data` is null; the caller
+// holds fftw_planner_mutex().
+fftw_plan plan_in_place(const std::array<int, 3>& n, int C, bool forward, unsigned flags, fftw_complex* data) {
   const int dims[3] = {n[0], n[1], n[2]};
   const int real_rows[3] = {n[0], n[1], 2 * (n[2] / 2 + 1)};
   const int complex_rows[3] = {n[0], n[1], n[2] / 2 + 1};
-  FftwBuffer<fftw_complex> data(static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * C);
-  double* real = reinterpret_cast<double*>(data.data());
-  return forward ? fftw_plan_many_dft_r2c(3, dims, C, real, real_rows, C, 1, data.data(), complex_rows, C, 1, flags)
-                 : fftw_plan_many_dft_c2r(3, dims, C, data.data(), complex_rows, C, 1, real, real_rows, C, 1, flags);
+  FftwBuffer<fftw_complex> own(data ? 0 : static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * C);
+  if (!data) data = own.data();
+  double* real = reinterpret_cast<double*>(data);
+  return forward ? fftw_plan_many_dft_r2c(3, dims, C, real, real_rows, C, 1, data, complex_rows, C, 1, flags)
+                 : fftw_plan_many_dft_c2r(3, dims, C, data, complex_rows, C, 1, real, real_rows, C, 1, flags);
   // nullptr if FFTW cannot plan it
 }
 
@@ -85,12 +87,12 @@ SpmeGrid::~SpmeGrid() {
     if (p->plan) fftw_destroy_plan(p->plan);
 }
 
-fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward) const {
+fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const {
   std::call_once(p.made, [&] {
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     static const bool threads_ready = fftw_init_threads() != 0;
     if (threads_ready) fftw_plan_with_nthreads(threads_);
-    const fftw_plan made = plan_in_place(parameters_.grid, components, forward, flags_);
+    const fftw_plan made = plan_in_place(parameters_.grid, components, forward, flags_, on);
     if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
     if (!made) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
     p.plan = made;
@@ -114,16 +116,36 @@ std::size_t SpmeGrid::buffer_size(int components) const {
   return slab_ ? slab_->buffer_size(components) : components * complex_points();
 }
 
-void SpmeGrid::forward(fftw_complex* data, int components) const {
+namespace {
+
+void check_components(int components, const char* where) {
   if (components != 3 && components != 1)
-    throw std::invalid_argument("SpmeGrid::forward: 3 or 1 interleaved grids, not " + std::to_string(components));
+    throw std::invalid_argument(std::string(where) + ": 3 or 1 interleaved grids, not " + std::to_string(components));
+}
+
+}  // namespace
+
+FftwBuffer<fftw_complex> SpmeGrid::work_array(int components) const {
+  check_components(components, "SpmeGrid::work_array");
+  FftwBuffer<fftw_complex> data(buffer_size(components));
+  if (slab_) {
+    slab_->plan_on(data.data(), components);
+  } else {
+    plan(components == 3 ? forward3_ : forward1_, components, true, data.data());
+    if (components == 3) plan(backward3_, 3, false, data.data());
+  }
+  return data;
+}
+
+void SpmeGrid::forward(fftw_complex* data, int components) const {
+  check_components(components, "SpmeGrid::forward");
   if (slab_) return slab_->forward(data, components);
-  fftw_execute_dft_r2c(plan(components == 3 ? forward3_ : forward1_, components, true), real_part(data), data);
+  fftw_execute_dft_r2c(plan(components == 3 ? forward3_ : forward1_, components, true, nullptr), real_part(data), data);
 }
 
 void SpmeGrid::backward(fftw_complex* data) const {
   if (slab_) return slab_->backward(data);
-  fftw_execute_dft_c2r(plan(backward3_, 3, false), data, real_part(data));
+  fftw_execute_dft_c2r(plan(backward3_, 3, false, nullptr), data, real_part(data));
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {

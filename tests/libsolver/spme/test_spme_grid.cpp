@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <complex>
+#include <cstdio>
+#include <fstream>
+#include <string>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -31,6 +35,21 @@ Eigen::Vector3d wavevector(int i, int j, int l, const SpmeGrid& g) {
 double spline_modulus(int i, int j, int l, const SpmeGrid& g) {
   return bspline_modulus(g.order(), g.size(0))[i] * bspline_modulus(g.order(), g.size(1))[j] *
          bspline_modulus(g.order(), g.size(2))[l];
+}
+// This process's resident memory ("VmRSS") or its peak since the last reset ("VmHWM"), in
+// bytes, from /proc/self/status; -1 where there is none.
+long long status_bytes(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind(field + ":", 0) == 0) return std::stoll(line.substr(field.size() + 1)) * 1024;
+  return -1;
+}
+// Resets the peak to the present resident memory (Linux 4.0 on); false where it cannot.
+bool reset_peak_memory() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.flush();
+  return static_cast<bool>(clear);
 }
 }  // namespace
 
@@ -77,6 +96,54 @@ TEST(SpmeGrid, InPlaceTransformsOfInterleavedGrids) {
       for (int c = 0; c < 3; ++c)
         back = std::max(back, std::abs(real[(row * R + l) * 3 + c] / n - original[(row * K3 + l) * 3 + c]));
   EXPECT_LT(back, 1e-14);
+}
+
+// FFTW_MEASURE plans by running candidate transforms on an array. Planned on the work array
+// itself (work_array(), before the array is written), the first transforms of a grid need no
+// second array of its size: the process's peak grows by one array, not two (a gigabyte of
+// each for the 1,000-cell tube's grid). Transforms planned so serve any array: the round trip
+// of a second work array returns K1 K2 K3 x.
+TEST(SpmeGrid, MeasuredTransformsArePlannedOnTheWorkArray) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine change the resident memory";
+#endif
+  const SpmeGrid grid(kBox, EwaldParameters{6.0, 0.5, {80, 80, 80}, 6}, FftPlanning::measure);
+  const long long bytes = static_cast<long long>(grid.buffer_size(3) * sizeof(fftw_complex));  // 12.6 MB
+  if (!reset_peak_memory() || status_bytes("VmHWM") < 0) GTEST_SKIP() << "no /proc/self/clear_refs to reset the peak";
+  const long long before = status_bytes("VmRSS");
+  {
+    FftwBuffer<fftw_complex> data = grid.work_array(3);
+    double* real = SpmeGrid::real_part(data.data());
+    for (std::size_t p = 0; p < grid.buffer_size(3) * 2; ++p) real[p] = 1.0;
+    grid.forward(data.data());
+    grid.backward(data.data());
+  }
+  const long long grown = status_bytes("VmHWM") - before;
+  std::printf("peak grown by %.1f MB for a work array of %.1f MB\n", grown / 1e6, bytes / 1e6);
+  EXPECT_GT(grown, bytes * 9 / 10);  // the work array itself, written
+  EXPECT_LT(grown, bytes * 3 / 2);   // and no second array to plan on
+
+  FftwBuffer<fftw_complex> data = grid.work_array(3);
+  const int K3 = grid.size(2), R = grid.row_stride();
+  const std::size_t rows = static_cast<std::size_t>(grid.size(0)) * grid.size(1);
+  double* real = SpmeGrid::real_part(data.data());
+  std::mt19937 gen(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> x(rows * K3 * 3);  // component c of (row, l) at (row K3 + l) 3 + c
+  for (double& v : x) v = u(gen);
+  for (std::size_t row = 0; row < rows; ++row)
+    for (int l = 0; l < K3; ++l)
+      for (int c = 0; c < 3; ++c) real[(row * R + l) * 3 + c] = x[(row * K3 + l) * 3 + c];
+  grid.forward(data.data());
+  grid.backward(data.data());
+  double err = 0;
+  for (std::size_t row = 0; row < rows; ++row)
+    for (int l = 0; l < K3; ++l)
+      for (int c = 0; c < 3; ++c)
+        err = std::max(err, std::abs(real[(row * R + l) * 3 + c] / static_cast<double>(grid.real_points()) -
+                                     x[(row * K3 + l) * 3 + c]));
+  std::printf("round trip of a second work array: %.2e\n", err);
+  EXPECT_LT(err, 1e-14);
 }
 
 // One mode at a time: u^ = (1/V) K^F(-k) rho^ / |B|^2, zero at k = 0 and on Nyquist planes.
