@@ -29,7 +29,9 @@ std::vector<SHSurface> placed_cells(const CaseCells& cells, int order);
 double placement_gap(const Case& c);
 
 struct InitialCells {
-  std::vector<SHSurface> rest;     // the membranes' reference shapes
+  // The membranes' reference shapes: rigid motions (rotation and translation of the
+  // coefficients) of reference_shape(cells, cells.order), so that they share its rest metrics.
+  std::vector<SHSurface> rest;
   std::vector<SHSurface> initial;  // the shapes the run starts from (perturbed, pre-deformed)
   std::optional<std::string> note;  // how the cells were placed, where it is not plain
 };

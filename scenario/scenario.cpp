@@ -149,11 +149,14 @@ Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
   s.placement_note = placed.note;
   const std::shared_ptr<const MembraneLaw> law =
       make_membrane_law(to_string(k.membrane.law), k.membrane.shear_modulus, k.membrane.dilatation_modulus);
+  // The rest shapes are rigid motions of one reference shape (cell_layout.h): one set of rest
+  // metrics serves every membrane.
+  const auto rest = std::make_shared<const RestMetrics>(reference_shape(k, k.order), *s.grids);
   double cells_volume = 0;
   for (std::size_t i = 0; i < placed.rest.size(); ++i) {
     Cell cell;
     cell.membrane = std::make_shared<const Membrane>(placed.rest[i], s.grids,
-                                                     MembraneParameters{law, k.membrane.bending_modulus});
+                                                     MembraneParameters{law, k.membrane.bending_modulus}, rest);
     cell.shape = std::move(placed.initial[i]);
     cell.body_force = to_eigen(k.body_force);
     cells_volume += enclosed_volume(cell.shape.geometry(*s.grids->n_grid));

@@ -16,9 +16,27 @@ struct Membrane::Kinematics {
   Eigen::MatrixXd dbend;                // b^a_b - b^{aR}_b as columns 11, 12, 21, 22
 };
 
-Membrane::Membrane(const SHSurface& reference, std::shared_ptr<const CellGrids> grids,
-                   MembraneParameters params)
-    : reference_(reference), grids_(std::move(grids)), params_(std::move(params)) {
+RestMetrics::RestMetrics(const SHSurface& reference, const CellGrids& grids) {
+  const SurfaceGeometry g = reference.geometry(*grids.m_grid);
+  det = g.a11.array() * g.a22.array() - g.a12.array().square();
+  inv11 = g.a22.array() / det.array();
+  inv12 = -g.a12.array() / det.array();
+  inv22 = g.a11.array() / det.array();
+  b11 = inv11.array() * g.b11.array() + inv12.array() * g.b12.array();
+  b12 = inv11.array() * g.b12.array() + inv12.array() * g.b22.array();
+  b21 = inv12.array() * g.b11.array() + inv22.array() * g.b12.array();
+  b22 = inv12.array() * g.b12.array() + inv22.array() * g.b22.array();
+}
+
+std::size_t RestMetrics::memory_bytes() const {
+  std::size_t n = 0;
+  for (const Eigen::VectorXd* v : {&inv11, &inv12, &inv22, &det, &b11, &b12, &b21, &b22}) n += v->size();
+  return n * sizeof(double);
+}
+
+Membrane::Membrane(const SHSurface& reference, std::shared_ptr<const CellGrids> grids, MembraneParameters params,
+                   std::shared_ptr<const RestMetrics> rest)
+    : reference_(reference), grids_(std::move(grids)), params_(std::move(params)), rest_(std::move(rest)) {
   if (!grids_) throw std::invalid_argument("Membrane: no grids");
   if (!params_.law) throw std::invalid_argument("Membrane: no constitutive law");
   if (params_.bending_modulus < 0) throw std::invalid_argument("Membrane: bending modulus must be >= 0");
@@ -26,16 +44,9 @@ Membrane::Membrane(const SHSurface& reference, std::shared_ptr<const CellGrids> 
     throw std::invalid_argument("Membrane: reference shape of order " + std::to_string(reference_.order()) +
                                 " exceeds the cell order " + std::to_string(grids_->order));
   }
-  const SurfaceGeometry g = reference_.geometry(*grids_->m_grid);
-  ref_det_ = g.a11.array() * g.a22.array() - g.a12.array().square();
-  ref_inv11_ = g.a22.array() / ref_det_.array();
-  ref_inv12_ = -g.a12.array() / ref_det_.array();
-  ref_inv22_ = g.a11.array() / ref_det_.array();
-  // Mixed curvature b^a_b = a^{ac} b_cb of the reference.
-  ref_b11_ = ref_inv11_.array() * g.b11.array() + ref_inv12_.array() * g.b12.array();
-  ref_b12_ = ref_inv11_.array() * g.b12.array() + ref_inv12_.array() * g.b22.array();
-  ref_b21_ = ref_inv12_.array() * g.b11.array() + ref_inv22_.array() * g.b12.array();
-  ref_b22_ = ref_inv12_.array() * g.b12.array() + ref_inv22_.array() * g.b22.array();
+  if (!rest_) rest_ = std::make_shared<const RestMetrics>(reference_, *grids_);
+  if (rest_->det.size() != grids_->m_grid->grid().size())
+    throw std::invalid_argument("Membrane: rest metrics of another grid");
 }
 
 Membrane::Kinematics Membrane::kinematics(const SurfaceGeometry& g) const {
@@ -52,23 +63,23 @@ Membrane::Kinematics Membrane::kinematics(const SurfaceGeometry& g) const {
   k.n22.resize(np);
   for (int p = 0; p < np; ++p) {
     // Invariants (18) from C = A^{-1} a: tr C = A^{ab} a_ab, det C = det a / det A.
-    const double trC = ref_inv11_[p] * g.a11[p] + 2 * ref_inv12_[p] * g.a12[p] + ref_inv22_[p] * g.a22[p];
-    const double detC = det[p] / ref_det_[p];
+    const double trC = rest_->inv11[p] * g.a11[p] + 2 * rest_->inv12[p] * g.a12[p] + rest_->inv22[p] * g.a22[p];
+    const double detC = det[p] / rest_->det[p];
     const double J = std::sqrt(detC);
     const StrainEnergy e = params_.law->energy(trC - 2.0, detC - 1.0);
     // Cauchy tension N^{ab} = (2/J) W1 A^{ab} + 2 J W2 a^{ab}; for Skalak this is eq. (20).
     const double ca = 2.0 * e.W1 / J, cb = 2.0 * J * e.W2;
     k.J[p] = J;
     k.W[p] = e.W;
-    k.n11[p] = ca * ref_inv11_[p] + cb * k.inv11[p];
-    k.n12[p] = ca * ref_inv12_[p] + cb * k.inv12[p];
-    k.n22[p] = ca * ref_inv22_[p] + cb * k.inv22[p];
+    k.n11[p] = ca * rest_->inv11[p] + cb * k.inv11[p];
+    k.n12[p] = ca * rest_->inv12[p] + cb * k.inv12[p];
+    k.n22[p] = ca * rest_->inv22[p] + cb * k.inv22[p];
   }
   k.dbend.resize(np, 4);
-  k.dbend.col(0) = k.inv11.array() * g.b11.array() + k.inv12.array() * g.b12.array() - ref_b11_.array();
-  k.dbend.col(1) = k.inv11.array() * g.b12.array() + k.inv12.array() * g.b22.array() - ref_b12_.array();
-  k.dbend.col(2) = k.inv12.array() * g.b11.array() + k.inv22.array() * g.b12.array() - ref_b21_.array();
-  k.dbend.col(3) = k.inv12.array() * g.b12.array() + k.inv22.array() * g.b22.array() - ref_b22_.array();
+  k.dbend.col(0) = k.inv11.array() * g.b11.array() + k.inv12.array() * g.b12.array() - rest_->b11.array();
+  k.dbend.col(1) = k.inv11.array() * g.b12.array() + k.inv12.array() * g.b22.array() - rest_->b12.array();
+  k.dbend.col(2) = k.inv12.array() * g.b11.array() + k.inv22.array() * g.b12.array() - rest_->b21.array();
+  k.dbend.col(3) = k.inv12.array() * g.b12.array() + k.inv22.array() * g.b22.array() - rest_->b22.array();
   return k;
 }
 
@@ -133,8 +144,8 @@ MembraneState Membrane::compute(const SHCoeffs& x) const {
     const Eigen::ArrayXd bm11 = k.dbend.col(0).array(), bm12 = k.dbend.col(1).array(),
                          bm21 = k.dbend.col(2).array(), bm22 = k.dbend.col(3).array();
     // b^a_c = db^a_c + b^{aR}_c (current mixed curvature).
-    const Eigen::ArrayXd c11 = bm11 + ref_b11_.array(), c12 = bm12 + ref_b12_.array(),
-                         c21 = bm21 + ref_b21_.array(), c22 = bm22 + ref_b22_.array();
+    const Eigen::ArrayXd c11 = bm11 + rest_->b11.array(), c12 = bm12 + rest_->b12.array(),
+                         c21 = bm21 + rest_->b21.array(), c22 = bm22 + rest_->b22.array();
     const Eigen::ArrayXd k12 = c11 * m12.array() + c12 * m22.array();
     const Eigen::ArrayXd k21 = c21 * m11.array() + c22 * m21.array();
     const Eigen::VectorXd anti = 0.5 * (k12 - k21);  // N^{12} - N^{21} = K^{12} - K^{21}

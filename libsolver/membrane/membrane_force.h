@@ -33,12 +33,27 @@ struct MembraneState {
   double elastic_energy = 0.0;        // integral W dA_ref + (E_B / 2) integral |b - b^R|^2 dA
 };
 
-// One cell's membrane: its stress-free reference (metric and curvature on the M grid,
-// computed once) and its parameters.
+// The stress-free reference's contravariant metric a^{ab}, |a| = det a_{ab} and mixed curvature
+// b^a_b = a^{ac} b_cb on the M grid. They belong to the surface and its parametrisation, not to
+// where it lies: a rigid motion of the shape (SHSurface::rotate, translate: the coefficients
+// move, the parameter sphere stays) leaves them unchanged, so the cells of a run, rotated
+// copies of one reference shape, share one (8 values a point of the M grid: 0.3 MB a cell at
+// N = 16, M = 48).
+struct RestMetrics {
+  RestMetrics(const SHSurface& reference, const CellGrids& grids);
+  Eigen::VectorXd inv11, inv12, inv22, det;
+  Eigen::VectorXd b11, b12, b21, b22;
+  std::size_t memory_bytes() const;
+};
+
+// One cell's membrane: its stress-free reference (metric and curvature on the M grid) and its
+// parameters.
 class Membrane {
  public:
-  Membrane(const SHSurface& reference, std::shared_ptr<const CellGrids> grids,
-           MembraneParameters params);
+  // rest: the metrics of `reference` or of a shape it is a rigid motion of (shared by the
+  // cells placed as copies of one shape); computed from `reference` when null.
+  Membrane(const SHSurface& reference, std::shared_ptr<const CellGrids> grids, MembraneParameters params,
+           std::shared_ptr<const RestMetrics> rest = nullptr);
 
   // Traction and membrane diagnostics for the deformed surface x (order N coefficients).
   MembraneState compute(const SHCoeffs& x) const;
@@ -48,6 +63,7 @@ class Membrane {
   const CellGrids& grids() const { return *grids_; }
   const MembraneParameters& parameters() const { return params_; }
   const SHSurface& reference() const { return reference_; }
+  const std::shared_ptr<const RestMetrics>& rest_metrics() const { return rest_; }
 
  private:
   struct Kinematics;
@@ -56,9 +72,7 @@ class Membrane {
   SHSurface reference_;
   std::shared_ptr<const CellGrids> grids_;
   MembraneParameters params_;
-  // Reference quantities on the M grid: contravariant metric A^{ab} and mixed curvature B^a_b.
-  Eigen::VectorXd ref_inv11_, ref_inv12_, ref_inv22_, ref_det_;
-  Eigen::VectorXd ref_b11_, ref_b12_, ref_b21_, ref_b22_;
+  std::shared_ptr<const RestMetrics> rest_;
 };
 
 }  // namespace rbcflow

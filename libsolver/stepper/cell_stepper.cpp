@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <set>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
@@ -314,6 +315,10 @@ FlowSolution CellStepper::solve() const {
   if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
+  std::set<const RestMetrics*> rest_metrics;  // shared by the cells placed as copies of one shape
+  for (const Cell& c : cells_)
+    if (rest_metrics.insert(c.membrane->rest_metrics().get()).second)
+      s.memory.add("membranes' rest metrics", c.membrane->rest_metrics()->memory_bytes());
   return s;
 }
 

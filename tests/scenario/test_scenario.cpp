@@ -79,6 +79,28 @@ TEST(Scenario, HematocritBecomesACountOnTheMeshedLumen) {
   EXPECT_NEAR(*pair.tube_hematocrit, 0.26, 0.005);
 }
 
+// Every membrane of a run holds the rest metrics of the case's reference shape, one set for
+// all: each cell's rest shape, placed at random or listed with its orientation, is a rigid
+// motion of that shape, so its own metrics are the shared ones to rounding (a stretched or
+// mirrored rest shape would differ at O(1)).
+TEST(Scenario, MembranesShareTheRestMetricsOfTheirReferenceShape) {
+  for (const std::string& cells : {std::string("hematocrit = 0.15\norder = 8\n"),
+                                  std::string("order = 8\npositions = [[3.3, 3.3, 2], [3.3, 3.3, 6]]\n"
+                                              "orientations = [[0, 0.6, 0.8], [1, 0, 0]]\n")}) {
+    const Scenario s = prepare_scenario(parse_case(kTube + "element_size = 0.5\n[cells]\n" + cells, "r.toml"));
+    ASSERT_GE(s.cells.size(), 2u) << cells;
+    const std::shared_ptr<const RestMetrics>& shared = s.cells[0].membrane->rest_metrics();
+    for (const Cell& c : s.cells) {
+      EXPECT_EQ(c.membrane->rest_metrics(), shared);
+      const RestMetrics own(c.membrane->reference(), *s.grids);
+      for (auto field : {&RestMetrics::inv11, &RestMetrics::inv22, &RestMetrics::det, &RestMetrics::b11,
+                         &RestMetrics::b22})  // the non-zero ones of the axisymmetric reference
+        EXPECT_LT((own.*field - *shared.*field).cwiseAbs().maxCoeff(), 1e-12 * (*shared.*field).cwiseAbs().maxCoeff())
+            << cells;
+    }
+  }
+}
+
 TEST(Scenario, ListedCellThroughTheWallOfEveryVesselKindIsRefused) {
   // A red cell (radius 1.39) lying across a D = 3 vessel (radius 1.5): on the axis it fits, 1.0
   // off it it reaches through the wall.

@@ -73,6 +73,41 @@ TEST(MembraneForce, RigidMotionsOfDeformedAndReferenceTogetherChangeNothing) {
   EXPECT_LT((s2.principal_tension - s0.principal_tension).cwiseAbs().maxCoeff(), 1e-11 * scale);
 }
 
+// The rest metrics are intrinsic: those of a reference shape serve every rotated and
+// translated copy of it (the cells of a run share one set), to rounding; a mirror image
+// (det -1) turns the normal and with it the curvature, and does not share them.
+TEST(MembraneForce, RigidlyMovedReferencesShareTheirRestMetrics) {
+  const int N = 16;
+  auto grids = CellGrids::make(N, 2 * N);
+  const SHSurface ref = make_biconcave(N);
+  const auto shared = std::make_shared<const RestMetrics>(ref, *grids);
+  SHSurface moved = ref, cur = deformed_biconcave(N), mirrored = ref;
+  moved.rotate(rotation());
+  moved.translate(Eigen::Vector3d(3.0, -1.0, 0.5));
+  cur.rotate(rotation());
+  cur.translate(Eigen::Vector3d(3.0, -1.0, 0.5));
+  mirrored.transform(Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal() * rotation());
+  const RestMetrics own(moved, *grids), mirror(mirrored, *grids);
+  // Relative to the largest of each kind (the axisymmetric shape's a^{12} and b^1_2 are 0).
+  const double metric = shared->inv11.cwiseAbs().maxCoeff(), curvature = shared->b11.cwiseAbs().maxCoeff();
+  const auto difference = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).cwiseAbs().maxCoeff(); };
+  for (auto field : {&RestMetrics::inv11, &RestMetrics::inv12, &RestMetrics::inv22})
+    EXPECT_LT(difference(own.*field, *shared.*field), 1e-12 * metric);
+  EXPECT_LT(difference(own.det, shared->det), 1e-12 * shared->det.cwiseAbs().maxCoeff());
+  for (auto field : {&RestMetrics::b11, &RestMetrics::b12, &RestMetrics::b21, &RestMetrics::b22})
+    EXPECT_LT(difference(own.*field, *shared.*field), 1e-12 * curvature);
+  EXPECT_GT(difference(mirror.b11, shared->b11), curvature);  // -b: a difference of 2 |b|
+
+  const MembraneState by_own = Membrane(moved, grids, params("skalak")).compute(cur.coeffs());
+  const Membrane sharing(moved, grids, params("skalak"), shared);
+  EXPECT_EQ(sharing.rest_metrics(), shared);
+  const MembraneState by_shared = sharing.compute(cur.coeffs());
+  const double scale = by_own.traction_grid.cwiseAbs().maxCoeff();
+  EXPECT_LT((by_shared.traction_grid - by_own.traction_grid).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_NEAR(by_shared.elastic_energy, by_own.elastic_energy, 1e-12 * by_own.elastic_energy);
+  EXPECT_THROW(Membrane(moved, CellGrids::make(N, 3 * N), params("skalak"), shared), std::invalid_argument);
+}
+
 namespace {
 
 // A random smooth (band-limited, degrees < 5) deformation of `ref` of size `amplitude`.
