@@ -79,7 +79,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
       const auto& K = e->choice.parameters.grid;
       // The plans keep them only within their bound (each rank's plan holds its sources' pairs).
       m.kept_coefficients = pairs / ranks <= static_cast<double>(s.options.domain.max_kept_pairs) ? 16 * pairs : 0.0;
-      const double split_bytes = 2.2 * pairs + m.kept_coefficients + nodes * (5.5 * P + 250);
+      const double split_bytes = 2.2 * pairs + m.kept_coefficients + nodes * (4.1 * P + 250);
       const double spectra = 16.0 * K[0] * K[1] * (K[2] / 2 + 1);  // of one grid
       const double work_arrays = 6 * spectra;                         // two arrays of 3 grids
       m.lean_transforms = 2 * spectra;  // one of them of 1 grid (SpmePlan::transform_lean)

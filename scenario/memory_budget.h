@@ -10,7 +10,8 @@
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 2.2 bytes each in the coded
 //                        list (bench_spme BM_NeighborList) and
-//                        16 kept; 5.5 P bytes of pair shares and 250 bytes of stencils per node;
+//                        16 kept; 4.1 P bytes of pair shares (6-byte folded patch nodes) and
+//                        250 bytes of stencils per node;
 //                        one product's work arrays, 48 bytes per grid point (two arrays of 3
 //                        grids, transformed in place; 32 with lean transforms, below)
 //   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the

@@ -201,6 +201,9 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
   for (int p = 0; p < grid.size(); ++p) u.row(p) = unit_direction(grid.theta()[p / grid.n_phi()], grid.phi(p % grid.n_phi()));
   // The regular rule's nodes inside each table's patch with their eta (shifted with the
   // stencils for the node targets of a ring): table b's are [b * grid.size(), + count[b]).
+  if (grid.size() > PatchNode::kMaxNodes)
+    throw std::invalid_argument("LayerCorrection: a cell of " + std::to_string(grid.size()) +
+                                " nodes (patch nodes are numbered below " + std::to_string(PatchNode::kMaxNodes) + ")");
   const auto patch_nodes = std::make_unique_for_overwrite<PatchNode[]>(static_cast<std::size_t>(n_tables) * grid.size());
   std::vector<int> patch_node_count(n_tables, 0);
 #pragma omp parallel
@@ -226,7 +229,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       batch_atan2(sin_rho.data(), cos_rho.data(), rho.data(), n);
       batch_patch_mask(rho.data(), rho1, eta.data(), n);
       for (std::size_t k = 0; k < n; ++k)
-        if (rho[k] < rho1) listed[patch_node_count[b]++] = {candidate[k], static_cast<float>(eta[k])};
+        if (rho[k] < rho1) listed[patch_node_count[b]++] = PatchNode(candidate[k], static_cast<float>(eta[k]));
       double delta = 0.0;  // parametric distance of an off-surface target: distance over the local length scale
       if (centre.target >= 0 && targets[centre.target].distance > 0) {
         Eigen::Vector3d xc, jc;
@@ -247,11 +250,11 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
     const int b = stencils->table[t];
     for (const PatchNode& centred :
          std::span<const PatchNode>(patch_nodes.get() + static_cast<std::size_t>(b) * grid.size(), patch_node_count[b])) {
-      const int i = centred.node / grid.n_phi();
-      int j = centred.node % grid.n_phi() + node_shift;
+      const int i = centred.node() / grid.n_phi();
+      int j = centred.node() % grid.n_phi() + node_shift;
       if (j >= grid.n_phi()) j -= grid.n_phi();
       const int p = i * grid.n_phi() + j;
-      if (p != targets[t].self_node) f(p, centred.eta);
+      if (p != targets[t].self_node) f(p, centred.eta());
     }
   };
   // Storage in one array per kind and correction (targets in order), sized first: the node
@@ -333,7 +336,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
         if (fold && folded[i] == c->folded_offsets_[t + 1]) fold = false;
         if (!fold && kept[i] == c->node_offsets_[t + 1]) fold = true;
         if (fold) {
-          c->folded_[folded[i]++] = {p, eta};
+          c->folded_[folded[i]++] = PatchNode(p, static_cast<float>(eta));
           continue;
         }
         const bool single = c->kernel_.layer() == Layer::single;

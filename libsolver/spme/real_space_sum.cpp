@@ -57,7 +57,7 @@ class ShareLookup {
     for (int i = 0; i < pairs.n_sources(); ++i) rank_[pairs.order()[i]] = i;
     for (const PairShares::Segment& g : shares_->segments)
       for (int e = 0; e < g.count; ++e) {
-        const int s = g.first_source + g.nodes[e].node;
+        const int s = g.first_source + g.nodes[e].node();
         if (s < 0 || s >= pairs.n_sources())
           throw std::invalid_argument("real-space Ewald sum: a pair share names source " + std::to_string(s) + " of " +
                                       std::to_string(pairs.n_sources()));
@@ -89,7 +89,7 @@ class ShareLookup {
   void for_each_share(int t, F&& f) const {
     for (std::int64_t i = shares_->offsets[t]; i < shares_->offsets[t + 1]; ++i) {
       const PairShares::Segment& g = shares_->segments[i];
-      for (int e = 0; e < g.count; ++e) f(g.first_source + g.nodes[e].node, g.nodes[e].eta);
+      for (int e = 0; e < g.count; ++e) f(g.first_source + g.nodes[e].node(), g.nodes[e].eta());
     }
   }
 
@@ -130,14 +130,22 @@ PairShares PairShares::from_lists(std::vector<std::int64_t> offsets, const std::
                                                                offsets.back() != static_cast<std::int64_t>(sources.size()))))
     throw std::invalid_argument("pair shares: " + std::to_string(sources.size()) + " sources, " +
                                 std::to_string(shares.size()) + " shares and offsets that do not fit them");
+  // Each target's entries in segments whose sources lie within PatchNode::kMaxNodes above the
+  // segment's first.
   PairShares p;
-  p.held.resize(sources.size());
-  for (std::size_t i = 0; i < sources.size(); ++i) p.held[i] = {sources[i], shares[i]};
+  p.held.reserve(sources.size());
   p.offsets.assign(offsets.size(), 0);
   for (std::size_t t = 0; t + 1 < offsets.size(); ++t) {
-    const std::int64_t n = offsets[t + 1] - offsets[t];
-    p.offsets[t + 1] = p.offsets[t] + (n > 0 ? 1 : 0);
-    if (n > 0) p.segments.push_back({p.held.data() + offsets[t], static_cast<std::int32_t>(n), 0});
+    p.offsets[t + 1] = p.offsets[t];
+    for (std::int64_t i = offsets[t]; i < offsets[t + 1];) {
+      const int first = sources[i];
+      std::int64_t j = i;
+      for (; j < offsets[t + 1] && sources[j] >= first && sources[j] - first < PatchNode::kMaxNodes; ++j)
+        p.held.emplace_back(sources[j] - first, shares[j]);
+      p.segments.push_back({p.held.data() + i, static_cast<std::int32_t>(j - i), first});
+      ++p.offsets[t + 1];
+      i = j;
+    }
   }
   return p;
 }

@@ -124,6 +124,25 @@ TEST(RealSpaceSum, SharedPairsCountWithWeightOneMinusShare) {
   }
 }
 
+// from_lists keeps each entry's source and share whatever the sources' spread: a segment
+// numbers its nodes from its first source in 16 bits (PatchNode), so sources further apart,
+// or below the first, start a segment of their own.
+TEST(RealSpaceSum, PairSharesFromListsKeepEverySource) {
+  const std::vector<int> sources = {5, 65540, 70000, 3, 140000, 140001};
+  const std::vector<float> shares = {0.5f, 0.25f, 0.125f, 0.75f, 0.375f, 0.0625f};
+  const PairShares p = PairShares::from_lists({0, 0, 6}, sources, shares);  // target 0 has none
+  ASSERT_EQ(p.offsets, (std::vector<std::int64_t>{0, 0, 4}));
+  std::vector<int> got_sources;
+  std::vector<float> got_shares;
+  for (const PairShares::Segment& g : p.segments)
+    for (int e = 0; e < g.count; ++e) {
+      got_sources.push_back(g.first_source + g.nodes[e].node());
+      got_shares.push_back(g.nodes[e].eta());
+    }
+  EXPECT_EQ(got_sources, sources);
+  EXPECT_EQ(got_shares, shares);
+}
+
 TEST(RealSpaceSum, RejectsSharesThatDoNotFit) {
   const PeriodicBox box(Eigen::Vector3d::Ones());
   const PointField x = random_points(10, Eigen::Vector3d::Ones(), 1);
