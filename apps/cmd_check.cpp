@@ -216,7 +216,8 @@ void print_memory(const Scenario& s) {
                 s.ranks_per_machine);
   }
   for (const MemoryEstimate::Part& p : m.parts) std::printf("         %-28s %8.3f GiB\n", p.name.c_str(), m.on_each_rank(p) / kGiB);
-  std::printf("         (1.3 x the parts, for what a step builds and frees, + 60 MB for the program)\n");
+  std::printf("         (%.1f x the parts, for what a step builds and frees with its freed memory %s, + 60 MB for "
+              "the program)\n", m.peak_factor, s.reuses_freed_memory ? "kept" : "returned");
   if (m.kept_coefficients > 0) {
     std::printf("         Ewald pair coefficients %s (%.3f GiB of the cells' Ewald sum)\n",
                 s.keeps_pair_coefficients ? "kept between products" : "recomputed in every product to fit the budget",

@@ -16,7 +16,6 @@ namespace rbcflow {
 
 namespace {
 
-constexpr double kPeakFactor = 1.3;
 // Up to this fraction of the budget a run's heaps keep what its steps free, for the next steps
 // (libsolver/stepper/step_memory.h); above it they return it. bench_step wide512 (0.69 of a
 // 23.5 GiB machine) ran with its heaps kept; wide1000 (0.96) was killed for memory in its first
@@ -45,11 +44,13 @@ std::string gib(double bytes) {
 
 }  // namespace
 
-double MemoryEstimate::total() const {
+double MemoryEstimate::parts_total() const {
   double sum = 0;
   for (const Part& p : parts) sum += on_each_rank(p);
-  return kPeakFactor * sum + kProgramBytes;
+  return sum;
 }
+
+double MemoryEstimate::total() const { return peak_factor * parts_total() + kProgramBytes; }
 
 MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
   MemoryEstimate m;
@@ -113,15 +114,19 @@ void apply_memory_budget(Scenario& s, RankLayout layout) {
   s.memory_budget = s.options.domain.ranks.min(memory_budget(s.c, layout.per_machine));
   s.ranks_per_machine = layout.per_machine;
   s.reuses_freed_memory = s.memory.total() <= kReuseFreedMemory * s.memory_budget;
-  if (!s.reuses_freed_memory && s.memory.lean_transforms > 0) {
-    // Memory is short: the double layer's transforms go lean too.
-    for (MemoryEstimate::Part& p : s.memory.parts)
-      if (p.name == "cells' Ewald sum") p.bytes -= s.memory.lean_transforms;
-    s.options.domain.lean_transforms = true;
+  if (!s.reuses_freed_memory) {
+    // Memory is short: what the steps free goes back to the system, so that the peak is
+    // closer to what a step holds, and the double layer's transforms go lean.
+    s.memory.peak_factor = MemoryEstimate::kPeakFactorReturned;
+    if (s.memory.lean_transforms > 0) {
+      for (MemoryEstimate::Part& p : s.memory.parts)
+        if (p.name == "cells' Ewald sum") p.bytes -= s.memory.lean_transforms;
+      s.options.domain.lean_transforms = true;
+    }
   }
   const double total = s.memory.total();
   if (total <= s.memory_budget) return;
-  const double without = total - kPeakFactor * s.memory.kept_coefficients / layout.ranks;
+  const double without = total - s.memory.peak_factor * s.memory.kept_coefficients / layout.ranks;
   if (s.memory.kept_coefficients > 0 && without <= s.memory_budget) {
     s.options.domain.max_kept_pairs = 0;
     s.keeps_pair_coefficients = false;

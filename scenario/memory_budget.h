@@ -18,7 +18,8 @@
 //                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair
 //                        coefficients: each of these operators is applied once a step)
-//   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program
+//   peak                 1.3 x the sum (what a step builds and frees) + 60 MB for the program;
+//                        1.1 x when the run returns what its steps free (below)
 // with P = 2N^2 nodes per cell, Q patch points per target, H the tube hematocrit. The single
 // layer holds nothing past its build (cell_layers.h). Calibrated at 303b38c on bench_step's
 // tube27 (N = 16, lambda = 5, Ewald 1e-6: predicted and measured peak in docs/performance.md),
@@ -49,6 +50,11 @@ struct RankLayout {
 };
 
 struct MemoryEstimate {
+  // The peak as a factor of what a step holds: what it builds and frees besides, with the
+  // heaps keeping freed memory (tube27 1.27, tube64 1.29) or returning it (bench_step wide1000:
+  // 1.08 at 4c3a3e2, the peak in a cell product with its work arrays).
+  static constexpr double kPeakFactorKept = 1.3;
+  static constexpr double kPeakFactorReturned = 1.1;
   struct Part {
     std::string name;
     double bytes = 0;  // on one process
@@ -58,8 +64,10 @@ struct MemoryEstimate {
   double kept_coefficients = 0;  // of the cells' Ewald part (split): what not keeping them saves
   double lean_transforms = 0;    // of the cells' Ewald part: what lean transforms save
   int ranks = 1;
+  double peak_factor = kPeakFactorKept;  // kPeakFactorReturned where freed memory is returned
   double on_each_rank(const Part& p) const { return p.bytes * (1.0 - p.split + p.split / ranks); }
-  double total() const;  // the peak of each rank: 1.3 x its parts + the program
+  double parts_total() const;  // of each rank
+  double total() const;        // the peak of each rank: peak_factor x its parts + the program
 };
 
 MemoryEstimate estimate_memory(const Scenario& s, int ranks = 1);
@@ -74,9 +82,9 @@ double memory_budget(const Case& c, int ranks_per_machine = 1);
 // throws CaseError naming solver.memory_gib with the estimate and what to change. `layout`:
 // the run's ranks and those on this rank's machine. A run whose estimate is above 3/4 of its
 // budget has its freed memory returned to the system instead of kept for the next steps
-// (s.reuses_freed_memory; libsolver/stepper/step_memory.h) and the double layer's transforms
-// lean (s.options.domain.lean_transforms: 32 bytes a grid point instead of 48, the estimate's
-// part lowered by that). In a run on several ranks
+// (s.reuses_freed_memory; libsolver/stepper/step_memory.h), its estimate's peak factor 1.1
+// instead of 1.3, and the double layer's transforms lean (s.options.domain.lean_transforms: 32
+// bytes a grid point instead of 48, the estimate's part lowered by that). In a run on several ranks
 // (s.options.domain.ranks) every rank takes the decision of the smallest of the ranks'
 // budgets, so that all hold the same operators.
 void apply_memory_budget(Scenario& s, RankLayout layout);

@@ -154,6 +154,9 @@ TEST(Scenario, ExpertEwaldOverridesAreRefusedByName) {
 // The memory budget (memory_budget.h): the estimate grows with the cells; a budget that holds
 // everything but the kept Ewald pair coefficients drops them (and the double layer's Ewald
 // choice becomes the one without them); a smaller one is refused naming solver.memory_gib.
+// Budgets below the estimate have the run return its freed memory, and the estimate is then
+// that mode's (1.1 x the parts, lean transforms): `returned`, the run at a budget of its own
+// first estimate.
 TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
                            "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = ";
@@ -166,8 +169,15 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   EXPECT_EQ(more.memory.parts.size(), 6u);  // geometry, singular, nearly singular, Ewald, wall, coupling
 
   constexpr double gib = 1024.0 * 1024.0 * 1024.0;
-  const double without = more.memory.total() - 1.3 * more.memory.kept_coefficients;
-  const double between = 0.5 * (without + more.memory.total()) / gib;
+  const Scenario returned = prepare_scenario(
+      parse_case(tube + "0.3\n[solver]\nmemory_gib = " + std::to_string(more.memory.total() / gib) + "\n", "m.toml"));
+  ASSERT_FALSE(returned.reuses_freed_memory);
+  ASSERT_TRUE(returned.keeps_pair_coefficients);
+  EXPECT_EQ(returned.memory.peak_factor, MemoryEstimate::kPeakFactorReturned);
+  EXPECT_NEAR(returned.memory.parts_total(), more.memory.parts_total() - more.memory.lean_transforms,
+              1e-9 * more.memory.parts_total());
+  const double without = returned.memory.total() - MemoryEstimate::kPeakFactorReturned * more.memory.kept_coefficients;
+  const double between = 0.5 * (without + returned.memory.total()) / gib;
   const Scenario tight = prepare_scenario(parse_case(tube + "0.3\n[solver]\nmemory_gib = " + std::to_string(between) + "\n", "m.toml"));
   EXPECT_FALSE(tight.keeps_pair_coefficients);
   EXPECT_EQ(tight.options.domain.max_kept_pairs, 0);
@@ -185,7 +195,8 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
 
 // A run far below its budget keeps what its steps free for the next steps; one above 3/4 of it
 // returns it (libsolver/stepper/step_memory.h), with or without the kept pair coefficients, and
-// transforms its double layer lean, its estimate lowered by an array of 2 grids of 3.
+// transforms its double layer lean: its estimate's parts lowered by an array of 2 grids of 3,
+// their factor 1.1 instead of 1.3.
 TEST(Scenario, FreedMemoryIsKeptOnlyFarBelowTheBudget) {
   const std::string tube = "[domain]\nbox = [6.6, 6.6, 8]\nmean_velocity = [0, 0, 1]\nviscosity_ratio = 5\n"
                            "[vessel]\ndiameter = 6\nelement_size = 0.5\n[cells]\norder = 12\nhematocrit = 0.3\n";
@@ -203,9 +214,15 @@ TEST(Scenario, FreedMemoryIsKeptOnlyFarBelowTheBudget) {
   EXPECT_TRUE(close.keeps_pair_coefficients);
   EXPECT_TRUE(close.options.domain.lean_transforms);
   ASSERT_GT(far.memory.lean_transforms, 0.0);
-  EXPECT_NEAR(far.memory.total() - close.memory.total(), 1.3 * far.memory.lean_transforms, 1e-6 * far.memory.total());
+  EXPECT_EQ(far.memory.peak_factor, MemoryEstimate::kPeakFactorKept);
+  EXPECT_EQ(close.memory.peak_factor, MemoryEstimate::kPeakFactorReturned);
+  EXPECT_NEAR(far.memory.parts_total() - close.memory.parts_total(), far.memory.lean_transforms,
+              1e-9 * far.memory.parts_total());
+  const double program = far.memory.total() - MemoryEstimate::kPeakFactorKept * far.memory.parts_total();
+  EXPECT_NEAR(close.memory.total(), MemoryEstimate::kPeakFactorReturned * close.memory.parts_total() + program,
+              1e-9 * total);
   // Fits only without the kept coefficients: a budget 2% under the lean estimate.
-  const Scenario over = with_budget(1.02 * total / (total - 1.3 * far.memory.lean_transforms));
+  const Scenario over = with_budget(1.02 * total / close.memory.total());
   EXPECT_FALSE(over.keeps_pair_coefficients);
   EXPECT_FALSE(over.reuses_freed_memory);
 }
@@ -234,10 +251,19 @@ TEST(Scenario, MemoryBudgetOfRanksSharingAMachine) {
   EXPECT_LT(per_rank, one.memory.total());
   EXPECT_GT(2 * per_rank, one.memory.total());
 
+  // Near the budget the runs return their freed memory: the estimates of that mode, each run
+  // at a budget of its own first estimate.
   constexpr double gib = 1024.0 * 1024.0 * 1024.0;
-  const double without_two = per_rank - 1.3 * two.memory.kept_coefficients / 2;
-  ASSERT_LT(one.memory.total(), 2 * without_two);
-  const std::string budget = std::to_string(0.5 * (one.memory.total() + 2 * without_two) / gib);
+  const Scenario one_returned = prepare_scenario(
+      parse_case(tube + "[solver]\nmemory_gib = " + std::to_string(one.memory.total() / gib) + "\n", "m.toml"));
+  const Scenario two_returned = prepare_scenario(
+      parse_case(tube + "[solver]\nmemory_gib = " + std::to_string(2 * per_rank / gib) + "\n", "m.toml"), 2);
+  ASSERT_FALSE(one_returned.reuses_freed_memory);
+  ASSERT_FALSE(two_returned.reuses_freed_memory);
+  const double without_two =
+      two_returned.memory.total() - MemoryEstimate::kPeakFactorReturned * two.memory.kept_coefficients / 2;
+  ASSERT_LT(one_returned.memory.total(), 2 * without_two);
+  const std::string budget = std::to_string(0.5 * (one_returned.memory.total() + 2 * without_two) / gib);
   const Case fits_one = parse_case(tube + "[solver]\nmemory_gib = " + budget + "\n", "m.toml");
   EXPECT_TRUE(prepare_scenario(fits_one).keeps_pair_coefficients);
   try {
