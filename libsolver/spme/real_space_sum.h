@@ -13,8 +13,8 @@ namespace rbcflow {
 // Pairs that count with weight 1 - share: the part of their integral that another rule supplies
 // (the patches of the singular quadrature, where the regular rule's share is eta, the
 // partition of unity: quadrature/singular_quadrature.h). Per caller's target t, the segments
-// [offsets[t], offsets[t + 1]): node e of a segment is the caller's source first_source + e.node
-// with share e.eta; a source may appear more than once (the shares add). The nodes are held by
+// [offsets[t], offsets[t + 1]): node e of a segment is the caller's source first_source + e.node()
+// with share e.eta(); a source may appear more than once (the shares add). The nodes are held by
 // whoever built them, the singular corrections' folded nodes (operators/cell_layers.h), which
 // must outlive the sums, or by `held` (from_lists). A pair is weighted at its nearest image
 // only, which must lie within the cutoff and within half the shortest box side (else it is not
