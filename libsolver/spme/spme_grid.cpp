@@ -33,6 +33,11 @@ fftw_plan plan_in_place(const std::array<int, 3>& n, int C, bool forward, unsign
   // nullptr if FFTW cannot plan it
 }
 
+void check_components(int components, const char* where) {
+  if (components != 3 && components != 1)
+    throw std::invalid_argument(std::string(where) + ": 3 or 1 interleaved grids, not " + std::to_string(components));
+}
+
 }  // namespace
 
 SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning,
@@ -115,15 +120,6 @@ std::size_t SpmeGrid::spectrum_points() const {
 std::size_t SpmeGrid::buffer_size(int components) const {
   return slab_ ? slab_->buffer_size(components) : components * complex_points();
 }
-
-namespace {
-
-void check_components(int components, const char* where) {
-  if (components != 3 && components != 1)
-    throw std::invalid_argument(std::string(where) + ": 3 or 1 interleaved grids, not " + std::to_string(components));
-}
-
-}  // namespace
 
 FftwBuffer<fftw_complex> SpmeGrid::work_array(int components) const {
   check_components(components, "SpmeGrid::work_array");
