@@ -2,9 +2,12 @@
 // corrections build, GMRES products, wall solve), for the cases of bench/step_cases.h:
 //   build/bin/bench_step minicase [--steps 5]
 //   OMP_NUM_THREADS=1 build/bin/bench_step tube27 --steps 2
+//   build/bin/bench_step wide125 --steps 3 --memory-gib 2.6   (the case's solver.memory_gib)
 // One line per step (step 1 of a lambda != 1 case with walls includes the start sweeps), then
 // the minimum over the later steps of each column (wall-clock seconds; cpu: process CPU time,
-// all threads). Set-up (mesh, wall operator and its LU,
+// all threads; sys: the part of it in the kernel; faults: thousands of minor page faults, the
+// pages a step maps afresh: a run that returns its freed memory to the system faults its
+// workspaces in again at each step, scenario/memory_budget.h). Set-up (mesh, wall operator and its LU,
 // placement) is timed apart; what the last step's operators held (by structure, per cell) and
 // the peak resident memory of the process close the output.
 #include <omp.h>
@@ -49,14 +52,29 @@ constexpr Column kColumns[] = {
     {"wall_vel", &StepTimings::wall_at_cells},
 };
 
-double peak_resident_mb() {
+rusage process_usage() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+  return usage;
 }
 
-void print_row(const char* label, double step, double cpu, const StepTimings& t, int gmres_cells, int gmres_wall) {
-  std::printf("%-6s %8.3f %8.3f", label, step, cpu);
+double peak_resident_mb() { return process_usage().ru_maxrss / 1024.0; }  // Linux: kilobytes
+
+double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); }
+
+// What the kernel did for the process between two samples.
+struct KernelShare {
+  double sys = 0;     // seconds of system time, all threads
+  double faults = 0;  // minor page faults, thousands
+};
+
+KernelShare kernel_share(const rusage& from, const rusage& to) {
+  return {seconds(to.ru_stime) - seconds(from.ru_stime), 1e-3 * static_cast<double>(to.ru_minflt - from.ru_minflt)};
+}
+
+void print_row(const char* label, double step, double cpu, const KernelShare& k, const StepTimings& t, int gmres_cells,
+               int gmres_wall) {
+  std::printf("%-6s %8.3f %8.3f %8.3f %8.0f", label, step, cpu, k.sys, k.faults);
   for (const Column& c : kColumns) std::printf(" %10.3f", t.*c.field);
   std::printf(" %6d %6d\n", gmres_cells, gmres_wall);
 }
@@ -69,46 +87,52 @@ int main(int argc, char** argv) {
   // Rank 0 prints the table; every other rank only its peak memory (on stderr), at the end.
   if (!ranks.root() && !std::freopen("/dev/null", "w", stdout)) return 1;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_step single|minicase|tubeK|wideK [--steps K]  (K cells in the D = 6 or D = 12 tube, e.g. tube27)\n");
+    std::fprintf(stderr, "usage: bench_step single|minicase|tubeK|wideK [--steps K] [--memory-gib G]  (K cells in the D = 6 or D = 12 tube, e.g. tube27)\n");
     return 2;
   }
   const std::string name = argv[1];
   int steps = 5;
+  double memory_gib = 0;
   for (int i = 2; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--steps") steps = std::max(1, std::atoi(argv[i + 1]));
+    if (std::string(argv[i]) == "--memory-gib") memory_gib = std::atof(argv[i + 1]);
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    bench::StepCase step_case = bench::make_step_case(name);
+    bench::StepCase step_case = bench::make_step_case(name, memory_gib);
     auto& stepper = step_case.stepper;
     const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("case %s: %zu cells, %s, set-up %.2f s, peak memory after set-up %.0f MB\n", name.c_str(),
                 stepper->cells().size(), ranks_and_threads(ranks.size(), omp_get_max_threads()).c_str(), setup,
                 peak_resident_mb());
-    std::printf("%-6s %8s %8s", "step", "total", "cpu");
+    std::printf("%-6s %8s %8s %8s %8s", "step", "total", "cpu", "sys", "faults");
     for (const Column& c : kColumns) std::printf(" %10s", c.name);
     std::printf(" %6s %6s\n", "it_c", "it_w");
     double best_step = 1e300, best_cpu = 1e300;
+    KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
     for (int k = 1; k <= steps; ++k) {
       const auto s0 = std::chrono::steady_clock::now();
       const std::clock_t c0 = std::clock();
+      const rusage u0 = process_usage();
       const FlowSolution s = stepper->solve();
       stepper->advance(s);
       const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
       const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-      print_row(std::to_string(k).c_str(), step, cpu, s.timings, s.gmres_cells, s.gmres_wall);
+      const KernelShare kernel = kernel_share(u0, process_usage());
+      print_row(std::to_string(k).c_str(), step, cpu, kernel, s.timings, s.gmres_cells, s.gmres_wall);
       if (k <= 2) std::printf("       peak memory after step %d: %.0f MB\n", k, peak_resident_mb());
       memory = s.memory;
       std::fflush(stdout);
       if (k == 1 && steps > 1) continue;
       best_step = std::min(best_step, step);
       best_cpu = std::min(best_cpu, cpu);
+      best_kernel = {std::min(best_kernel.sys, kernel.sys), std::min(best_kernel.faults, kernel.faults)};
       for (const Column& c : kColumns) best.*c.field = std::min(best.*c.field, s.timings.*c.field);
     }
-    print_row("min", best_step, best_cpu, best, 0, 0);
+    print_row("min", best_step, best_cpu, best_kernel, best, 0, 0);
     const double peak_mb = peak_resident_mb();
     const double cells = static_cast<double>(std::max<std::size_t>(1, stepper->cells().size()));
     std::printf("held by the last step's operators (MB per cell):\n");

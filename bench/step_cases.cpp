@@ -15,8 +15,9 @@ namespace fs = std::filesystem;
 
 constexpr double kDt = 1e-3;
 
-StepCase from_case(Case c) {
+StepCase from_case(Case c, double memory_gib) {
   c.time.dt = kDt;
+  if (memory_gib > 0) c.solver.memory_gib = memory_gib;
   Scenario s = prepare_scenario(c);
   const double estimate = s.memory.total();
   return {make_stepper(s), estimate};
@@ -24,12 +25,12 @@ StepCase from_case(Case c) {
 
 // A data/cases tube case with `count` cells at its tube hematocrit: the period grows with the
 // count (`period` for `cells` cells), the cells placed by the same code as rbcflow run's.
-StepCase tube_cells(const char* file, double period, int cells, int count) {
+StepCase tube_cells(const char* file, double period, int cells, int count, double memory_gib) {
   Case c = read_case(fs::path(RBCFLOW_CASES_DIR) / file);
   c.domain.box[2] = period * count / cells;
   c.cells->hematocrit.reset();
   c.cells->count = count;
-  return from_case(std::move(c));
+  return from_case(std::move(c), memory_gib);
 }
 
 // The K of a name "<prefix>K", or 0.
@@ -46,13 +47,13 @@ int count_in(const std::string& name, const std::string& prefix) {
 
 }  // namespace
 
-StepCase make_step_case(const std::string& name) {
+StepCase make_step_case(const std::string& name, double memory_gib) {
   if (name == "single" || name == "minicase") {
-    return from_case(read_case(fs::path(RBCFLOW_BENCH_CASES_DIR) / (name + ".toml")));
+    return from_case(read_case(fs::path(RBCFLOW_BENCH_CASES_DIR) / (name + ".toml")), memory_gib);
   }
   // tubeK: data/cases/tube_27_cells.toml's D = 6 tube; wideK: tube_1000_cells.toml's D = 12.
-  if (const int count = count_in(name, "tube")) return tube_cells("tube_27_cells.toml", 13.33, 27, count);
-  if (const int count = count_in(name, "wide")) return tube_cells("tube_1000_cells.toml", 123.56, 1000, count);
+  if (const int count = count_in(name, "tube")) return tube_cells("tube_27_cells.toml", 13.33, 27, count, memory_gib);
+  if (const int count = count_in(name, "wide")) return tube_cells("tube_1000_cells.toml", 123.56, 1000, count, memory_gib);
   throw std::invalid_argument("unknown case '" + name +
                               "' (single, minicase, tubeK, wideK: K cells in the D = 6 or D = 12 tube, e.g. tube27)");
 }

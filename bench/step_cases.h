@@ -28,7 +28,9 @@ struct StepCase {
   double estimated_peak_bytes = 0;  // rbcflow check's memory model (scenario/memory_budget.h)
 };
 
-// Throws std::invalid_argument for an unknown name.
-StepCase make_step_case(const std::string& name);
+// Throws std::invalid_argument for an unknown name. memory_gib > 0 replaces the case's
+// solver.memory_gib (the budget that chooses the run's memory modes, scenario/memory_budget.h):
+// e.g. wide125 with 2.6 runs in the modes the 1,000 cells take on this machine.
+StepCase make_step_case(const std::string& name, double memory_gib = 0);
 
 }  // namespace rbcflow::bench
