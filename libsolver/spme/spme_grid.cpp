@@ -41,8 +41,8 @@ void check_components(int components, const char* where) {
 }  // namespace
 
 SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning,
-                   const Communicator& ranks)
-    : box_(box), parameters_(parameters) {
+                   const Communicator& ranks, std::shared_ptr<WorkArrayPool> work_arrays)
+    : box_(box), parameters_(parameters), work_arrays_(std::move(work_arrays)) {
   validate(parameters, box);
   const std::array<int, 3>& K = parameters.grid;
   flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
@@ -121,9 +121,10 @@ std::size_t SpmeGrid::buffer_size(int components) const {
   return slab_ ? slab_->buffer_size(components) : components * complex_points();
 }
 
-FftwBuffer<fftw_complex> SpmeGrid::work_array(int components) const {
+WorkArray SpmeGrid::work_array(int components) const {
   check_components(components, "SpmeGrid::work_array");
-  FftwBuffer<fftw_complex> data(buffer_size(components));
+  WorkArray data(work_arrays_ ? work_arrays_->take(buffer_size(components)) : FftwBuffer<fftw_complex>(buffer_size(components)),
+                 work_arrays_.get());
   if (slab_) {
     slab_->plan_on(data.data(), components);
   } else {

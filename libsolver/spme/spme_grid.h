@@ -34,6 +34,7 @@
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/parallel/communicator.h"
 #include "libsolver/parallel/slab_fft.h"
+#include "work_array_pool.h"
 
 namespace rbcflow {
 
@@ -46,9 +47,11 @@ class SpmeGrid {
  public:
   // Throws std::invalid_argument for invalid parameters (validate()).
   // ranks: split the grid over them when they are several and the build has FFTW's MPI
-  // library (collective), else every rank holds the whole grid.
+  // library (collective), else every rank holds the whole grid. work_arrays: where the work
+  // arrays come from and go back to (work_array_pool.h); without one each is freed.
   SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters,
-           FftPlanning planning = FftPlanning::estimate, const Communicator& ranks = {});
+           FftPlanning planning = FftPlanning::estimate, const Communicator& ranks = {},
+           std::shared_ptr<WorkArrayPool> work_arrays = nullptr);
   ~SpmeGrid();
   SpmeGrid(const SpmeGrid&) = delete;
   SpmeGrid& operator=(const SpmeGrid&) = delete;
@@ -80,8 +83,9 @@ class SpmeGrid {
   // candidates on an array, and planning on the product's own array before anything is
   // written to it spares a second array of its size (a gigabyte for 3 components of a
   // 162 x 162 x 1600 grid) at the first product. forward() and backward() plan on an array of
-  // their own what no work array has planned.
-  FftwBuffer<fftw_complex> work_array(int components) const;
+  // their own what no work array has planned. From the grid's pool, which may hand out a larger
+  // array than asked for, one a product used before.
+  WorkArray work_array(int components) const;
 
   // Forward transform in place of `components` (3 or 1) interleaved real grids to their spectra.
   void forward(fftw_complex* data, int components = 3) const;
@@ -118,6 +122,7 @@ class SpmeGrid {
   int threads_;
   mutable LazyPlan forward3_, forward1_, backward3_;
   std::unique_ptr<SlabFft> slab_;  // distributed(): this rank's slab's transforms
+  std::shared_ptr<WorkArrayPool> work_arrays_;
 };
 
 }  // namespace rbcflow

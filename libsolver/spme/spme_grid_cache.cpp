@@ -15,7 +15,8 @@ std::shared_ptr<const SpmeGrid> SpmeGridCache::grid(EwaldKernel kernel, double t
   const EwaldParameters p = choose_ewald_parameters(kernel, tolerance, box, n_sources, n_targets, real_space).parameters;
   const double points = static_cast<double>(p.grid[0]) * p.grid[1] * p.grid[2];
   auto grid = std::make_shared<const SpmeGrid>(
-      box, p, points >= static_cast<double>(kMeasuredGridPoints) ? FftPlanning::measure : FftPlanning::estimate, ranks);
+      box, p, points >= static_cast<double>(kMeasuredGridPoints) ? FftPlanning::measure : FftPlanning::estimate, ranks,
+      work_arrays_);
   entries_.push_back({kernel, tolerance, box.lengths(), n_sources, n_targets, real_space, ranks.size(), grid});
   return grid;
 }

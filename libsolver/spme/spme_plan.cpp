@@ -41,7 +41,7 @@ PointField SpmePlan::single_layer(const PointField& forces) {
   check_rows(forces, n_sources(), "the force field");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(n_sources()));
-  FftwBuffer<fftw_complex> grid = grid_->work_array(3);
+  WorkArray grid = grid_->work_array(3);
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n_sources(); ++s)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = forces(s, c);
@@ -57,7 +57,7 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
                                 " unknowns on a grid of " + std::to_string(slab_points) + " points");
   auto t = std::chrono::steady_clock::now();
   std::vector<double> density(3 * static_cast<std::size_t>(x.rows()));
-  FftwBuffer<fftw_complex> buffer = grid_->work_array(3);
+  WorkArray buffer = grid_->work_array(3);
   for (Eigen::Index n = 0; n < x.rows(); ++n)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(n) + c] = x(n, c);
   const double* in = density.data();
@@ -78,7 +78,7 @@ PointField SpmePlan::single_layer(const SpmeStencils::SpreadingMatrix& spreading
   return convolve_stokeslet(buffer, t);
 }
 
-PointField SpmePlan::convolve_stokeslet(FftwBuffer<fftw_complex>& grid, std::chrono::steady_clock::time_point t) {
+PointField SpmePlan::convolve_stokeslet(WorkArray& grid, std::chrono::steady_clock::time_point t) {
   timings_.spreading = seconds_since(t);
   grid_->forward(grid.data());
   timings_.fft = seconds_since(t);
@@ -99,7 +99,7 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   timings_ = {};
   const int n = n_sources();
   std::vector<double> density(3 * static_cast<std::size_t>(n));
-  FftwBuffer<fftw_complex> velocity = grid_->work_array(3);
+  WorkArray velocity = grid_->work_array(3);
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < n; ++s)
     for (int c = 0; c < 3; ++c) density[3 * static_cast<std::size_t>(s) + c] = q(s, c) * normals(s, c);
@@ -111,7 +111,7 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   timings_.influence += seconds_since(t);
   {
     const int width = lean_ ? 1 : 3;
-    FftwBuffer<fftw_complex> part = grid_->work_array(width);
+    WorkArray part = grid_->work_array(width);
     constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // xy, xz, yz
     for (int first = 0; first < 3; first += width) {
 #pragma omp parallel for schedule(static)
@@ -136,7 +136,7 @@ PointField SpmePlan::double_layer(const PointField& q, const PointField& normals
   return transform_and_interpolate(velocity);
 }
 
-PointField SpmePlan::transform_and_interpolate(FftwBuffer<fftw_complex>& velocity) {
+PointField SpmePlan::transform_and_interpolate(WorkArray& velocity) {
   auto t = std::chrono::steady_clock::now();
   grid_->backward(velocity.data());
   timings_.fft += seconds_since(t);

@@ -63,9 +63,9 @@ class SpmePlan {
  private:
   // The single layer of the forces spread into the real grids of `grid` (spreading begun at
   // t): transforms, influence function, interpolation, in place.
-  PointField convolve_stokeslet(FftwBuffer<fftw_complex>& grid, std::chrono::steady_clock::time_point t);
+  PointField convolve_stokeslet(WorkArray& grid, std::chrono::steady_clock::time_point t);
   // Backward FFT of `velocity` in place and interpolation to the targets.
-  PointField transform_and_interpolate(FftwBuffer<fftw_complex>& velocity);
+  PointField transform_and_interpolate(WorkArray& velocity);
 
   std::shared_ptr<const SpmeGrid> grid_;
   std::shared_ptr<const SpmeStencils> sources_, targets_;

@@ -64,6 +64,12 @@ constexpr double kStartSweepForcing = 0.01;
 
 std::string at_step(long step) { return " at step " + std::to_string(step); }
 
+// Stops a pool keeping its arrays, and frees them, when it goes.
+struct KeptUntilReturn {
+  WorkArrayPool& pool;
+  ~KeptUntilReturn() { pool.keep(false); }
+};
+
 }  // namespace
 
 CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrids> grids, CellStepperOptions options)
@@ -79,7 +85,7 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     if (!options_.domain.box) throw std::invalid_argument("CellStepper: a vessel wall needs a periodic box");
     options_.wall_solve.ranks = options_.domain.ranks;  // the wall's rows shared by the cells' ranks
     wall_ = std::make_unique<WallCoupling>(options_.wall, *options_.domain.box, options_.domain.ewald_tolerance,
-                                           options_.wall_solve);
+                                           options_.wall_solve, work_arrays_);
     if (options_.collision_threshold > 0 || !cells_.empty())  // collisions; the cells' gap to the wall
       wall_distance_ = std::make_unique<WallDistance>(options_.wall->wall);
     if (options_.tube_velocity && !options_.tube) {
@@ -154,6 +160,10 @@ FlowSolution CellStepper::solve() const {
   ScopedTimer total_timer(timing.total);
   s.mean_velocity = options_.mean_velocity;
 
+  // The products' grid arrays are kept from the first solve of (10) on, once every operator of
+  // the step is built (the wall's at the cell nodes takes a gigabyte while built at a thousand
+  // cells), and freed as solve() returns or throws.
+  const KeptUntilReturn kept_work_arrays(*work_arrays_);
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
   if (nc > 0) {
@@ -248,6 +258,7 @@ FlowSolution CellStepper::solve() const {
     } else {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
     }
+    work_arrays_->keep(true);
     ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v =
         solve_cell_velocity(*layers, s.traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),

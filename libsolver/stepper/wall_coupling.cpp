@@ -6,11 +6,12 @@
 namespace rbcflow {
 
 WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const PeriodicBox& box, double ewald_tolerance,
-                           const WallSolveOptions& options)
+                           const WallSolveOptions& options, std::shared_ptr<WorkArrayPool> work_arrays)
     : elements_(std::move(wall)),
       box_(box),
       ewald_tolerance_(ewald_tolerance),
       options_(options),
+      grid_cache_(work_arrays ? std::make_unique<SpmeGridCache>(std::move(work_arrays)) : std::make_unique<SpmeGridCache>()),
       solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance, grid_cache_.get(),
                            WallOperator::RealSpace::assembled, 0, options.ranks)) {
   if (options_.recycle > 0) unit_forces();  // the seeds of the recycled Krylov space

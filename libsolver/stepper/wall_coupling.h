@@ -20,8 +20,10 @@ namespace rbcflow {
 
 class WallCoupling {
  public:
+  // work_arrays: the pool of its products' grid arrays (work_array_pool.h), shared with the
+  // cells' grids by a stepper; a pool of its own when null.
   WallCoupling(std::shared_ptr<const WallElements> wall, const PeriodicBox& box, double ewald_tolerance,
-               const WallSolveOptions& options);
+               const WallSolveOptions& options, std::shared_ptr<WorkArrayPool> work_arrays = nullptr);
 
   const WallElements& elements() const { return *elements_; }
   const PointField& nodes() const { return elements_->wall.surface.points; }
@@ -59,7 +61,7 @@ class WallCoupling {
   double ewald_tolerance_;
   WallSolveOptions options_;
   // The SPME grids of the wall's operators (its own and operator_at's), kept for the run.
-  std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>();
+  std::unique_ptr<SpmeGridCache> grid_cache_;
   WallSolver solver_;
   std::optional<std::array<PointField, 3>> unit_forces_;
 };

@@ -114,7 +114,7 @@ TEST(SpmeGrid, MeasuredTransformsArePlannedOnTheWorkArray) {
   const bool measured = kResidentMemoryIsTheProgram && reset_peak_memory() && status_bytes("VmHWM") >= 0;
   const long long before = status_bytes("VmRSS");
   {
-    FftwBuffer<fftw_complex> data = grid.work_array(3);
+    WorkArray data = grid.work_array(3);
     double* real = SpmeGrid::real_part(data.data());
     for (std::size_t p = 0; p < grid.buffer_size(3) * 2; ++p) real[p] = 1.0;
     grid.forward(data.data());
@@ -129,7 +129,7 @@ TEST(SpmeGrid, MeasuredTransformsArePlannedOnTheWorkArray) {
     std::printf("the peak is not measured here (no /proc/self/clear_refs, or AddressSanitizer)\n");
   }
 
-  FftwBuffer<fftw_complex> data = grid.work_array(3);
+  WorkArray data = grid.work_array(3);
   const int K3 = grid.size(2), R = grid.row_stride();
   const std::size_t rows = static_cast<std::size_t>(grid.size(0)) * grid.size(1);
   double* real = SpmeGrid::real_part(data.data());

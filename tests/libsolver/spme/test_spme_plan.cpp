@@ -120,6 +120,28 @@ TEST(SpmePlan, LeanTransformsGiveTheSameDoubleLayer) {
   EXPECT_EQ(work - plan.work_bytes(6), 2 * grid->buffer_size(1) * sizeof(fftw_complex));
 }
 
+// Products whose work arrays come from a keeping pool reuse the arrays of earlier products,
+// written by them (spreading zeroes what it uses): the same results to the bit as with fresh
+// arrays, and the pool holds one product's arrays (three grids and, lean, one), not one set
+// per product.
+TEST(SpmePlan, KeptWorkArraysGiveTheSameProducts) {
+  const Data& d = data();
+  const EwaldParameters p{6.0, 0.1, {32, 28, 36}, 8};
+  const auto fresh_grid = std::make_shared<const SpmeGrid>(kBox, p);
+  auto pool = std::make_shared<WorkArrayPool>();
+  pool->keep(true);
+  const auto kept_grid = std::make_shared<const SpmeGrid>(kBox, p, FftPlanning::estimate, Communicator{}, pool);
+  SpmePlan fresh(fresh_grid, d.xs, d.xt), kept(kept_grid, d.xs, d.xt);
+  fresh.transform_lean(true);
+  kept.transform_lean(true);
+  const PointField single = fresh.single_layer(d.f), double_layer = fresh.double_layer(d.q, d.n);
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ((kept.double_layer(d.q, d.n) - double_layer).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ((kept.single_layer(d.f) - single).cwiseAbs().maxCoeff(), 0.0);
+  }
+  EXPECT_EQ(pool->waiting_bytes(), (kept_grid->buffer_size(3) + kept_grid->buffer_size(1)) * sizeof(fftw_complex));
+}
+
 TEST(SpmePlan, RejectsMismatchedDensities) {
   const Data& d = data();
   SpmePlan plan(std::make_shared<const SpmeGrid>(kBox, EwaldParameters{6.0, 0.1, {16, 16, 16}, 4}),
