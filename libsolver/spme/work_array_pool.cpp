@@ -1,38 +1,31 @@
 #include "work_array_pool.h"
 
-#include <algorithm>
 #include <utility>
 
 namespace rbcflow {
 
 FftwBuffer<fftw_complex> WorkArrayPool::take(std::size_t size) {
-  std::vector<FftwBuffer<fftw_complex>> too_small;  // freed outside the lock
+  FftwBuffer<fftw_complex> waiting;
   {
     const std::lock_guard lock(mutex_);
-    auto best = waiting_.end();
-    for (auto a = waiting_.begin(); a != waiting_.end(); ++a)
-      if (a->size() >= size && (best == waiting_.end() || a->size() < best->size())) best = a;
-    if (best != waiting_.end()) {
-      FftwBuffer<fftw_complex> array = std::move(*best);
-      waiting_.erase(best);
-      return array;
-    }
-    too_small.swap(waiting_);
+    std::swap(waiting, waiting_);
   }
-  too_small.clear();
+  if (waiting.size() >= size) return waiting;
+  waiting = FftwBuffer<fftw_complex>();  // freed before the new one is allocated
   return FftwBuffer<fftw_complex>(size);
 }
 
 void WorkArrayPool::give_back(FftwBuffer<fftw_complex> array) {
   const std::lock_guard lock(mutex_);
-  if (keeping_) waiting_.push_back(std::move(array));
+  if (keeping_ && array.size() > waiting_.size()) std::swap(array, waiting_);
+  // `array` (the smaller of the two) is freed on return
 }
 
 void WorkArrayPool::keep(bool on) {
-  std::vector<FftwBuffer<fftw_complex>> freed;
+  FftwBuffer<fftw_complex> freed;
   const std::lock_guard lock(mutex_);
   keeping_ = on;
-  if (!on) freed.swap(waiting_);
+  if (!on) std::swap(freed, waiting_);
 }
 
 bool WorkArrayPool::keeping() const {
@@ -42,9 +35,7 @@ bool WorkArrayPool::keeping() const {
 
 std::size_t WorkArrayPool::waiting_bytes() const {
   const std::lock_guard lock(mutex_);
-  std::size_t bytes = 0;
-  for (const FftwBuffer<fftw_complex>& a : waiting_) bytes += a.size() * sizeof(fftw_complex);
-  return bytes;
+  return waiting_.size() * sizeof(fftw_complex);
 }
 
 }  // namespace rbcflow

@@ -1,22 +1,21 @@
 #pragma once
-// The grid arrays of SPME products (SpmeGrid::work_array: three grids and one, a gigabyte and a
-// third at a thousand cells, for each double-layer product), kept from one product to the next
+// The largest grid array of SPME products (SpmeGrid::work_array: the three grids of a
+// double-layer product, a gigabyte at a thousand cells), kept from one product to the next
 // while a solve runs instead of freed and allocated again. A run that returns its freed memory
 // to the system (libsolver/stepper/step_memory.h) otherwise maps each product's arrays afresh
-// and the kernel faults them in page by page, zeroed: at 125 cells 2.6 million page faults and
-// 4 s of system time in a step of 27 s of CPU time (docs/performance.md, "Freed pages kept
+// and the kernel faults them in page by page, zeroed (docs/performance.md, "Freed pages kept
 // between products"). Products write every point of an array they use (spreading zeroes it
 // first), so a kept array changes no result.
 //
-// While keeping(), an array given back waits for the next take(); take() hands out the smallest
-// waiting array that is large enough and, when none is, frees the waiting ones (all too small)
-// before it allocates. So the arrays a pool holds are those of the largest set of arrays live
-// at once, not one set per grid. Not keeping, give_back() frees. Thread-safe.
+// One array waits at a time, the largest given back: it stays live between products, where the
+// other arrays of a product (the lean double layer's one grid, a third of it) are not, so that
+// what the step holds at its peak grows by less than the arrays a product adds. take() hands
+// out the waiting array when it is large enough and otherwise frees it and allocates. Not
+// keeping(), give_back() frees. Thread-safe.
 #include <fftw3.h>
 
 #include <cstddef>
 #include <mutex>
-#include <vector>
 
 #include "geometry/sph/fftw_util.h"
 
@@ -27,7 +26,7 @@ class WorkArrayPool {
   // An array of at least `size` complex numbers (uninitialised).
   FftwBuffer<fftw_complex> take(std::size_t size);
   void give_back(FftwBuffer<fftw_complex> array);
-  // Off frees the waiting arrays.
+  // Off frees the waiting array.
   void keep(bool on);
   bool keeping() const;
   std::size_t waiting_bytes() const;
@@ -35,7 +34,7 @@ class WorkArrayPool {
  private:
   mutable std::mutex mutex_;
   bool keeping_ = false;
-  std::vector<FftwBuffer<fftw_complex>> waiting_;
+  FftwBuffer<fftw_complex> waiting_;
 };
 
 // A work array, given back to its pool when it goes (freed when it has none). Move-only.

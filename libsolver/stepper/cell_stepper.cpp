@@ -160,9 +160,9 @@ FlowSolution CellStepper::solve() const {
   ScopedTimer total_timer(timing.total);
   s.mean_velocity = options_.mean_velocity;
 
-  // The products' grid arrays are kept from the first solve of (10) on, once every operator of
-  // the step is built (the wall's at the cell nodes takes a gigabyte while built at a thousand
-  // cells), and freed as solve() returns or throws.
+  // The products' largest grid array is kept from the first solve of (10) on, once every
+  // operator of the step is built (the wall's at the cell nodes takes a gigabyte while built at
+  // a thousand cells), and freed as solve() returns or throws.
   const KeptUntilReturn kept_work_arrays(*work_arrays_);
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;

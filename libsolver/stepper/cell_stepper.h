@@ -171,8 +171,9 @@ class CellStepper {
   std::unique_ptr<WallDistance> wall_distance_;  // collision removal against the wall; min_wall_gap
   std::optional<TubeFlowMeter> tube_meter_;      // with options_.tube
   std::unique_ptr<SectionFluxMeter> section_meter_;  // with options_.flux_sections
-  // The grid arrays of the step's products, the cells' and the wall's (work_array_pool.h): kept
-  // from one product to the next while solve() runs its solves, freed before it returns.
+  // The largest grid array of the step's products, the cells' and the wall's
+  // (work_array_pool.h): kept from one product to the next while solve() runs its solves,
+  // freed before it returns.
   std::shared_ptr<WorkArrayPool> work_arrays_ = std::make_shared<WorkArrayPool>();
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>(work_arrays_);  // the cells' SPME grids
   StepperState state_;

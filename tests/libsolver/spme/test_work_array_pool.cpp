@@ -20,31 +20,30 @@ TEST(WorkArrayPool, FreesWhatComesBackUnlessKeeping) {
   EXPECT_EQ(pool.waiting_bytes(), 0u);
 }
 
-// The smallest waiting array that fits is handed out again, the same memory; a request no
-// waiting array fits frees them all before it allocates, so that what waits never exceeds what
-// was live at once.
-TEST(WorkArrayPool, HandsOutTheSmallestWaitingArrayThatFits) {
+// One array waits, the largest given back: the smaller is freed; a request it fits gets the
+// same memory, a larger one frees it before allocating.
+TEST(WorkArrayPool, KeepsTheLargestArrayGivenBack) {
   WorkArrayPool pool;
   pool.keep(true);
   FftwBuffer<fftw_complex> large = pool.take(3000), small = pool.take(1000);
-  const fftw_complex *large_data = large.data(), *small_data = small.data();
-  pool.give_back(std::move(large));
+  const fftw_complex* large_data = large.data();
   pool.give_back(std::move(small));
-  EXPECT_EQ(pool.waiting_bytes(), 4000 * kComplex);
-
-  FftwBuffer<fftw_complex> a = pool.take(900);
-  EXPECT_EQ(a.data(), small_data);
-  EXPECT_EQ(a.size(), 1000u);
-  FftwBuffer<fftw_complex> b = pool.take(1200);
-  EXPECT_EQ(b.data(), large_data);
+  EXPECT_EQ(pool.waiting_bytes(), 1000 * kComplex);
+  pool.give_back(std::move(large));
+  EXPECT_EQ(pool.waiting_bytes(), 3000 * kComplex);
+  pool.give_back(pool.take(2000));  // the waiting array, handed out and given back
+  FftwBuffer<fftw_complex> again = pool.take(900);
+  EXPECT_EQ(again.data(), large_data);
+  EXPECT_EQ(again.size(), 3000u);
   EXPECT_EQ(pool.waiting_bytes(), 0u);
-  pool.give_back(std::move(a));
-  FftwBuffer<fftw_complex> c = pool.take(5000);  // the waiting 1000 is freed, not kept beside it
-  EXPECT_EQ(c.size(), 5000u);
+  pool.give_back(std::move(again));
+  FftwBuffer<fftw_complex> larger = pool.take(5000);  // the waiting 3000 is freed, not kept beside it
+  EXPECT_EQ(larger.size(), 5000u);
   EXPECT_EQ(pool.waiting_bytes(), 0u);
-  pool.give_back(std::move(b));
-  pool.give_back(std::move(c));
-  EXPECT_EQ(pool.waiting_bytes(), 8000 * kComplex);
+  pool.give_back(pool.take(100));
+  EXPECT_EQ(pool.waiting_bytes(), 100 * kComplex);
+  pool.give_back(std::move(larger));
+  EXPECT_EQ(pool.waiting_bytes(), 5000 * kComplex);
 }
 
 TEST(WorkArrayPool, AWorkArrayGoesBackToItsPool) {
