@@ -1,4 +1,5 @@
 #include "cell_stepper.h"
+#include "step_memory.h"
 
 #include <algorithm>
 #include <array>
@@ -164,6 +165,7 @@ FlowSolution CellStepper::solve() const {
   // operator of the step is built (the wall's at the cell nodes takes a gigabyte while built at
   // a thousand cells), and freed as solve() returns or throws.
   const KeptUntilReturn kept_work_arrays(*work_arrays_);
+  release_heap_memory();  // what the last step freed into the heaps (step_memory.h)
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
   if (nc > 0) {
@@ -258,6 +260,7 @@ FlowSolution CellStepper::solve() const {
     } else {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
     }
+    if (!work_arrays_->keeping()) release_heap_memory();  // what the builds freed
     work_arrays_->keep(true);
     ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v =

@@ -9,8 +9,14 @@
 // what a step's build freed, and the next structures do not always fit in those holes
 // (wide125: peak 1.3 x what a step holds).
 // return_freed_memory() is the opposite, for a run whose estimate is close to its budget:
-// every block of 256 kB or more is mapped on its own and unmapped when freed, so the resident
-// memory is what is live, at the price of faulting each step's workspaces in again.
+// every block of 8 MB or more is mapped on its own and unmapped when freed; smaller blocks (a
+// cell's correction tables and the workspaces of its build) come from the heaps, where the next
+// cell's build reuses what the last one freed, and release_heap_memory() gives what the heaps
+// hold free back to the system. The stepper calls it where a step's builds are done (before
+// the first and after the last of its operators is built), so that the resident memory at the
+// products, where the step peaks, is what is live; each step faults its workspaces in again.
+// (With every block of 256 kB or more mapped, the 1,000 cells took 16 million page faults in a
+// step against 7 million, docs/performance.md.)
 // The scenario layer chooses one of them for each run (scenario/memory_budget.h); neither
 // changes a result. Each returns false where the C library does not take the settings (then
 // nothing changed).
@@ -18,5 +24,8 @@ namespace rbcflow {
 
 bool reuse_freed_memory();
 bool return_freed_memory();
+// After return_freed_memory(): the heaps' free memory back to the system (malloc_trim); else
+// nothing.
+void release_heap_memory();
 
 }  // namespace rbcflow
