@@ -4,8 +4,8 @@
 // while a solve runs instead of freed and allocated again. A run that returns its freed memory
 // to the system (libsolver/stepper/step_memory.h) otherwise maps each product's arrays afresh
 // and the kernel faults them in page by page, zeroed (docs/performance.md, "Freed pages kept
-// between products"). Products write every point of an array they use (spreading zeroes it
-// first), so a kept array changes no result.
+// between products and builds"). Products write every point of an array they use (spreading
+// zeroes it first), so a kept array changes no result.
 //
 // One array waits at a time, the largest given back: it stays live between products, where the
 // other arrays of a product (the lean double layer's one grid, a third of it) are not, so that
