@@ -95,7 +95,14 @@ int main(int argc, char** argv) {
   double memory_gib = 0;
   for (int i = 2; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--steps") steps = std::max(1, std::atoi(argv[i + 1]));
-    if (std::string(argv[i]) == "--memory-gib") memory_gib = std::atof(argv[i + 1]);
+    if (std::string(argv[i]) == "--memory-gib") {
+      char* end = nullptr;
+      memory_gib = std::strtod(argv[i + 1], &end);
+      if (end == argv[i + 1] || *end != '\0' || !(memory_gib > 0)) {
+        std::fprintf(stderr, "bench_step: --memory-gib takes a positive number of GiB, not '%s'\n", argv[i + 1]);
+        return 2;
+      }
+    }
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
