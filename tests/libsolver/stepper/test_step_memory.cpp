@@ -12,6 +12,19 @@
 
 using namespace rbcflow;
 
+// The tests measure glibc's heap under a setting (`apply`, which returns false where the C
+// library does not take it): skipped under AddressSanitizer, whose allocator quarantines freed
+// blocks instead, and where the setting is not taken.
+#if defined(__SANITIZE_ADDRESS__)
+#define SKIP_UNLESS_GLIBC_HEAP(apply) \
+  GTEST_SKIP() << "AddressSanitizer's allocator quarantines freed blocks: glibc's heap is not in use"
+#else
+#define SKIP_UNLESS_GLIBC_HEAP(apply) \
+  do {                                \
+    if (!(apply)) GTEST_SKIP() << "this C library does not take the malloc settings"; \
+  } while (0)
+#endif
+
 namespace {
 
 long minor_faults() {
@@ -47,10 +60,7 @@ long faults_to_fill(std::size_t bytes) {
 // threshold, 32 MB) allocated, written, freed, and allocated again. Without the setting the
 // second block is mapped afresh and faults every page in again; with it the pages are reused.
 TEST(StepMemory, FreedBlocksAreReusedWithoutPageFaults) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's allocator quarantines freed blocks: glibc's heap is not in use";
-#endif
-  if (!reuse_freed_memory()) GTEST_SKIP() << "this C library does not take the malloc settings";
+  SKIP_UNLESS_GLIBC_HEAP(reuse_freed_memory());
   const std::size_t bytes = std::size_t{64} << 20;
   const long pages = static_cast<long>(bytes / static_cast<std::size_t>(sysconf(_SC_PAGESIZE)));
   const long first = faults_to_fill(bytes), second = faults_to_fill(bytes);
@@ -66,10 +76,7 @@ TEST(StepMemory, FreedBlocksAreReusedWithoutPageFaults) {
 // without a fault (measured: 4,096, 4,095, 0 faults). A first block, before the three, may come
 // from what the heap held.
 TEST(StepMemory, LargeFreedBlocksAreReturnedWhenMemoryIsShort) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's allocator quarantines freed blocks: glibc's heap is not in use";
-#endif
-  if (!return_freed_memory()) GTEST_SKIP() << "this C library does not take the malloc settings";
+  SKIP_UNLESS_GLIBC_HEAP(return_freed_memory());
   const std::size_t bytes = std::size_t{16} << 20;
   const long pages = static_cast<long>(bytes / static_cast<std::size_t>(sysconf(_SC_PAGESIZE)));
   faults_to_fill(bytes);
@@ -85,10 +92,7 @@ TEST(StepMemory, LargeFreedBlocksAreReturnedWhenMemoryIsShort) {
 // 64 blocks of 1 MB, each followed by a small block that stays (so that the freed ones cannot
 // merge into the heap's top, which free() trims by itself), written and freed.
 TEST(StepMemory, SmallFreedBlocksWaitForTheRelease) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's allocator quarantines freed blocks: glibc's heap is not in use";
-#endif
-  if (!return_freed_memory()) GTEST_SKIP() << "this C library does not take the malloc settings";
+  SKIP_UNLESS_GLIBC_HEAP(return_freed_memory());
   constexpr std::size_t kBlock = std::size_t{1} << 20;
   constexpr int kBlocks = 64;
   release_heap_memory();
