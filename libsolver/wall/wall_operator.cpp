@@ -27,11 +27,12 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
-                           RealSpace real_space, long chosen_for_targets, Communicator ranks)
+                           RealSpace real_space, long chosen_for_targets, Communicator ranks,
+                           const RealSpaceUse& assembled_use)
     : WallOperator(std::move(elements), targets) {
   ranks_ = ranks;
   const long n = elements_->points.rows();
-  const RealSpaceUse use = real_space == RealSpace::assembled ? kAssembledRealSpace : RealSpaceUse{};
+  const RealSpaceUse use = real_space == RealSpace::assembled ? assembled_use : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
   const long m = chosen_for_targets > 0 ? chosen_for_targets : targets.rows();
   // The assembled operator's grid is split over the ranks where it can be (spme_grid.h); an

@@ -16,6 +16,7 @@
 #include "near_field.h"
 #include "symmetric_block_matrix.h"
 #include "wall_elements.h"
+#include "wall_real_space.h"
 
 namespace rbcflow {
 
@@ -34,11 +35,14 @@ class WallOperator {
   // and a product adds the ranks' rows; the smooth part is computed on the ranks' slabs of the
   // grid (spme_grid.h) and added in the same sum, or, in a build without FFTW's MPI library,
   // on every rank whole (the product then has the same bits as on one rank).
+  // `assembled_use` (RealSpace::assembled): the cost model's weight of a pair and the bound on
+  // the pairs the matrix holds; any bound meets the tolerance, a cutoff inside the near field's
+  // reach included.
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
                RealSpace real_space = RealSpace::per_product, long chosen_for_targets = 0,
-               Communicator ranks = {});
+               Communicator ranks = {}, const RealSpaceUse& assembled_use = kAssembledRealSpace);
 
 
   // One rank's part of the operator at every target of a run's ranks (the cells' nodes): the
