@@ -9,9 +9,11 @@
 // and perturbation) are a body each, with the identity pose at their centroid.
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "geometry/cgal/aabb_tree.h"
+#include "geometry/contact/distance_bounds.h"
 #include "geometry/surface/sh_surface.h"
 #include "geometry/contact/wall_distance.h"
 
@@ -59,6 +61,10 @@ class CellOverlap {
     Eigen::Matrix<double, Eigen::Dynamic, 3> normals;
     double radius = 0.0;
     TriangleAabbTree tree;
+    // Of the reference of random placement (every cell a copy of it): its signed distance
+    // tabulated, so that a tested point clearly apart needs no query. Listed cells (a body
+    // each, tested a few times) have none.
+    std::optional<DistanceBounds> bounds;
   };
   bool vertices_apart(const CellPose& a, const CellPose& b, const Eigen::Vector3d& shift) const;
 

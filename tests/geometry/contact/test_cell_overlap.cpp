@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "geometry/contact/wall_distance.h"
 #include "geometry/surface/reference_shapes.h"
@@ -87,4 +88,32 @@ TEST(CellOverlap, SphereInsideTubeExactlyWithinTheLumen) {
   }
   EXPECT_GT(inside, 100);
   EXPECT_GT(crossing, 100);
+}
+
+// The reference of random placement carries a table of its signed distance (distance_bounds.h)
+// that lets points clearly apart skip their closest-point query; the answers are those of the
+// queries alone (the same surface as a listed body, which has no table), for red cells in
+// every orientation at scales and distances around contact.
+TEST(CellOverlap, DistanceTableKeepsEveryAnswer) {
+  const SHSurface rbc = make_biconcave(16);
+  const Eigen::Vector3d period(0, 0, 6.0);
+  const CellOverlap with_table(rbc, kCheckOrder, period, nullptr, kGap);
+  const CellOverlap queries_only(std::vector<SHSurface>{rbc}, kCheckOrder, period, nullptr, kGap);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> distance(0.7, 3.0), scale(0.6, 1.0);
+  int apart = 0, touching = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    CellPose a, b;
+    a.rotation = random_rotation(rng);
+    b.rotation = random_rotation(rng);
+    a.scale = scale(rng);
+    b.scale = scale(rng);
+    a.position = Eigen::Vector3d(0.3, 0.1, 0.5);
+    b.position = a.position + distance(rng) * random_unit(rng);
+    const bool expected = queries_only.apart(a, b);
+    ASSERT_EQ(with_table.apart(a, b), expected) << "trial " << trial;
+    (expected ? apart : touching) += 1;
+  }
+  EXPECT_GT(apart, 400);
+  EXPECT_GT(touching, 400);
 }
