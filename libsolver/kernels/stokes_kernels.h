@@ -12,13 +12,10 @@
 
 namespace rbcflow {
 
-// G(r) as a matrix, symmetric to the bit: r r^T is formed before it is scaled ((s r) r^T is
-// not: (s r_i) r_j and (s r_j) r_i round differently), so that sums and differences of these
-// matrices stay symmetric however much they cancel (the wall's near-field corrections,
-// near_field.h, stored as symmetric blocks: symmetric_block_matrix.h).
+// G(r) as a matrix.
 inline Eigen::Matrix3d stokeslet(const Eigen::Vector3d& r) {
   const double r2 = r.squaredNorm(), inv_r = 1.0 / std::sqrt(r2);
-  return inv_r * Eigen::Matrix3d::Identity() + (inv_r * inv_r * inv_r) * (r * r.transpose()).eval();
+  return inv_r * Eigen::Matrix3d::Identity() + (inv_r * inv_r * inv_r) * r * r.transpose();
 }
 
 // G(r) f = f / r + r (r . f) / r^3.

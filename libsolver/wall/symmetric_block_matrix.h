@@ -18,7 +18,8 @@ namespace rbcflow {
 class SymmetricBlockMatrix {
  public:
   // From a 3 n_targets x 3 n_nodes matrix (index 3 i + k). Throws std::invalid_argument when a
-  // block differs from its transpose by more than 1e-12 of its largest entry.
+  // block differs from its transpose by more than 1e-12 of the largest entry of its row (the
+  // upper triangle is kept: what is below it at rounding is dropped).
   explicit SymmetricBlockMatrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& m);
   // Row by row, without a scalar matrix in between (a tenth of its memory at the peak):
   // row(t, blocks) appends target t's blocks, one per node, in any order; it is called from

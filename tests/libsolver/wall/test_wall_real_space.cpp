@@ -33,11 +33,11 @@ TEST(WallRealSpace, AssembledOperatorMeetsTheEwaldTolerance) {
   }
 }
 
-// A bound on the pairs (a short memory budget) moves the assembled operator to a cutoff
-// shorter than the near field's reach, so that some (target, node) blocks hold only the
-// near-field correction: accurate minus Gauss-7 integrals of G that cancel to ~1e-4 of either.
-// Such blocks are symmetric to the bit (stokes_kernels.h), the symmetric blocks hold them, and
-// the products still meet the tolerance.
+// A bound on the pairs moves the assembled operator to a cutoff shorter than the near field's
+// reach, so that some (target, node) blocks hold only the near-field correction: accurate minus
+// Gauss-7 integrals of G that cancel to ~1e-4 of either and keep their rounding's asymmetry.
+// The symmetric blocks hold them (their check is against the row's largest entry) and the
+// products still meet the tolerance.
 TEST(WallRealSpace, AssembledOperatorWithACutoffInsideTheNearField) {
   const Eigen::Vector3d box(3.0, 3.0, 2.0);
   auto e = std::make_shared<const WallElements>(tube(TubeSpec{2.0, 2, box, 0.4}));
