@@ -109,21 +109,43 @@ double memory_budget(const Case& c, int ranks_per_machine) {
   return machine / std::max(1, ranks_per_machine);
 }
 
+namespace {
+
+// Memory is short: what the steps free goes back to the system, so that the peak is closer to
+// what a step holds, and the double layer's transforms go lean.
+void spend_as_returned(Scenario& s) {
+  s.memory.peak_factor = MemoryEstimate::kPeakFactorReturned;
+  if (s.memory.lean_transforms > 0) {
+    for (MemoryEstimate::Part& p : s.memory.parts)
+      if (p.name == "cells' Ewald sum") p.bytes -= s.memory.lean_transforms;
+    s.options.domain.lean_transforms = true;
+  }
+}
+
+[[noreturn]] void refuse(const Scenario& s, RankLayout layout, double needed) {
+  std::string parts;
+  for (const MemoryEstimate::Part& p : s.memory.parts)
+    parts += (parts.empty() ? "" : ", ") + p.name + " " + gib(s.memory.on_each_rank(p));
+  const bool ranks = layout.ranks > 1;
+  const std::string budget = s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory";
+  throw case_error(s.c, "solver.memory_gib",
+                   "the run needs about " + gib(needed) + (ranks ? " on each of its ranks" : "") + " at its peak (" +
+                       parts + "), more than the memory budget of " + gib(s.memory_budget) +
+                       (ranks ? " per rank (" + budget + " shared by " + std::to_string(layout.per_machine) + " ranks)"
+                              : s.c.solver.memory_gib ? "" : " (the machine's memory)") +
+                       "; use fewer cells (a shorter period or a lower hematocrit), a smaller cells.order, "
+                       "a coarser wall (vessel.element_size), " +
+                       (ranks ? "fewer ranks on each machine, or machines with more memory" : "or a machine with more memory"));
+}
+
+}  // namespace
+
 void apply_memory_budget(Scenario& s, RankLayout layout) {
   s.memory = estimate_memory(s, layout.ranks);
   s.memory_budget = s.options.domain.ranks.min(memory_budget(s.c, layout.per_machine));
   s.ranks_per_machine = layout.per_machine;
   s.reuses_freed_memory = s.memory.total() <= kReuseFreedMemory * s.memory_budget;
-  if (!s.reuses_freed_memory) {
-    // Memory is short: what the steps free goes back to the system, so that the peak is
-    // closer to what a step holds, and the double layer's transforms go lean.
-    s.memory.peak_factor = MemoryEstimate::kPeakFactorReturned;
-    if (s.memory.lean_transforms > 0) {
-      for (MemoryEstimate::Part& p : s.memory.parts)
-        if (p.name == "cells' Ewald sum") p.bytes -= s.memory.lean_transforms;
-      s.options.domain.lean_transforms = true;
-    }
-  }
+  if (!s.reuses_freed_memory) spend_as_returned(s);
   const double total = s.memory.total();
   if (total <= s.memory_budget) return;
   const double without = total - s.memory.peak_factor * s.memory.kept_coefficients / layout.ranks;
@@ -132,19 +154,13 @@ void apply_memory_budget(Scenario& s, RankLayout layout) {
     s.keeps_pair_coefficients = false;
     return;
   }
-  std::string parts;
-  for (const MemoryEstimate::Part& p : s.memory.parts)
-    parts += (parts.empty() ? "" : ", ") + p.name + " " + gib(s.memory.on_each_rank(p));
-  const bool ranks = layout.ranks > 1;
-  const std::string budget = s.c.solver.memory_gib ? "solver.memory_gib" : "the machine's memory";
-  throw case_error(s.c, "solver.memory_gib",
-                   "the run needs about " + gib(without) + (ranks ? " on each of its ranks" : "") + " at its peak (" +
-                       parts + "), more than the memory budget of " + gib(s.memory_budget) +
-                       (ranks ? " per rank (" + budget + " shared by " + std::to_string(layout.per_machine) + " ranks)"
-                              : s.c.solver.memory_gib ? "" : " (the machine's memory)") +
-                       "; use fewer cells (a shorter period or a lower hematocrit), a smaller cells.order, "
-                       "a coarser wall (vessel.element_size), " +
-                       (ranks ? "fewer ranks on each machine, or machines with more memory" : "or a machine with more memory"));
+  refuse(s, layout, without);
+}
+
+void estimate_memory_without_kept_pairs(Scenario& s, RankLayout layout) {
+  s.memory = estimate_memory(s, layout.ranks);
+  if (!s.reuses_freed_memory) spend_as_returned(s);
+  if (s.memory.total() > s.memory_budget) refuse(s, layout, s.memory.total());
 }
 
 }  // namespace rbcflow

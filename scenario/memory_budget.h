@@ -89,4 +89,10 @@ double memory_budget(const Case& c, int ranks_per_machine = 1);
 // budgets, so that all hold the same operators.
 void apply_memory_budget(Scenario& s, RankLayout layout);
 
+// Once the Ewald sums are chosen again without the kept coefficients (apply_memory_budget
+// dropped them; the double layer's choice then changes): the estimate of what the run will
+// hold, in the memory mode already decided, so that `rbcflow check` prints the run's figure;
+// refused as above if that choice does not fit.
+void estimate_memory_without_kept_pairs(Scenario& s, RankLayout layout);
+
 }  // namespace rbcflow

@@ -170,6 +170,7 @@ Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
   apply_memory_budget(s, layout);
   if (!s.keeps_pair_coefficients && c.domain.kind == DomainKind::periodic) {
     s.ewald = ewald_sums(c, cell_nodes, wall_nodes, s.options.domain.max_kept_pairs);  // the choice without them
+    estimate_memory_without_kept_pairs(s, layout);
   }
   return s;
 }

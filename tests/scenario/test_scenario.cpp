@@ -181,6 +181,10 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   const Scenario tight = prepare_scenario(parse_case(tube + "0.3\n[solver]\nmemory_gib = " + std::to_string(between) + "\n", "m.toml"));
   EXPECT_FALSE(tight.keeps_pair_coefficients);
   EXPECT_EQ(tight.options.domain.max_kept_pairs, 0);
+  // Its estimate (what rbcflow check prints) is of the run as chosen: no kept coefficients,
+  // within the budget.
+  EXPECT_EQ(tight.memory.kept_coefficients, 0.0);
+  EXPECT_LE(tight.memory.total(), between * gib);
   const EwaldSum& dl = tight.ewald[1];
   ASSERT_EQ(dl.what, "cells, double layer");
   const EwaldChoice unkept = choose_ewald_parameters(EwaldKernel::stresslet, 1e-6, PeriodicBox(Eigen::Vector3d(6.6, 6.6, 8)),
