@@ -1,6 +1,5 @@
 #include "geometry/contact/distance_bounds.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace rbcflow {
@@ -11,8 +10,8 @@ DistanceBounds::DistanceBounds(const TriangleMesh& mesh, const Eigen::Matrix<dou
   box_low_ = mesh.points.colwise().minCoeff().transpose();
   box_high_ = mesh.points.colwise().maxCoeff().transpose();
   low_ = box_low_.array() - margin;
-  high_ = box_high_.array() + margin;
-  for (int k = 0; k < 3; ++k) count_[k] = static_cast<int>(std::ceil((high_[k] - low_[k]) / spacing)) + 1;
+  const Eigen::Vector3d high = box_high_.array() + margin;
+  for (int k = 0; k < 3; ++k) count_[k] = static_cast<int>(std::ceil((high[k] - low_[k]) / spacing)) + 1;
   values_.resize(static_cast<std::size_t>(count_[0]) * count_[1] * count_[2]);
   const long planes = static_cast<long>(count_[1]) * count_[2];
 #pragma omp parallel for schedule(dynamic, 16)

@@ -22,14 +22,13 @@ class DistanceBounds {
                  const TriangleAabbTree& tree, double margin, double spacing);
   // A lower bound on the signed distance of y from the surface.
   double lower(const Eigen::Vector3d& y) const;
-  std::size_t num_nodes() const { return values_.size(); }
 
  private:
   Eigen::Vector3d box_low_, box_high_;  // the surface's bounding box
-  Eigen::Vector3d low_, high_;          // the grid's corners
-  Eigen::Vector3i count_;       // nodes per direction
+  Eigen::Vector3d low_;                 // the grid's first node
+  Eigen::Vector3i count_;               // nodes per direction
   double spacing_;
-  std::vector<float> values_;   // sd at the nodes rounded down, x fastest
+  std::vector<float> values_;           // sd at the nodes rounded down, x fastest
 };
 
 }  // namespace rbcflow
