@@ -30,8 +30,9 @@ SymmetricBlockMatrix::SymmetricBlockMatrix(const Eigen::SparseMatrix<double, Eig
                                 std::to_string(m.cols()) + ", not made of 3x3 blocks");
 }
 
-SymmetricBlockMatrix::SymmetricBlockMatrix(int num_targets, int num_nodes, const std::function<void(int, Row&)>& row)
-    : num_nodes_(num_nodes) {
+SymmetricBlockMatrix::SymmetricBlockMatrix(int num_targets, int num_nodes, const std::function<void(int, Row&)>& row,
+                                           Precision precision)
+    : num_nodes_(num_nodes), precision_(precision) {
   const int nt = num_targets;
   // Each target's blocks, sorted by node and packed at once (the unpacked rows of all targets
   // would take 1.5 times the matrix).
@@ -62,44 +63,71 @@ SymmetricBlockMatrix::SymmetricBlockMatrix(int num_targets, int num_nodes, const
   if (!symmetric) throw std::invalid_argument("SymmetricBlockMatrix: a 3x3 block is not symmetric");
   offsets_.assign(nt + 1, 0);
   for (int t = 0; t < nt; ++t) offsets_[t + 1] = offsets_[t] + static_cast<std::int64_t>(rows[t].size());
+  const bool single = precision == Precision::single_entries;
   nodes_.resize(offsets_.back());
-  blocks_.resize(offsets_.back());
+  if (single) {
+    single_.resize(offsets_.back());
+  } else {
+    blocks_.resize(offsets_.back());
+  }
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < nt; ++t) {
     std::int64_t i = offsets_[t];
     for (const auto& [node, b] : rows[t]) {
       nodes_[i] = node;
-      blocks_[i++] = b;
+      if (single) {
+        for (int k = 0; k < 6; ++k) single_[i][k] = static_cast<float>(b[k]);
+      } else {
+        blocks_[i] = b;
+      }
+      ++i;
     }
     std::vector<std::pair<int, std::array<double, 6>>>().swap(rows[t]);
   }
 }
+
+namespace {
+
+// y = B f over the blocks of each target; the entries are read in their stored precision and
+// the sums kept in double.
+template <typename Scalar>
+void block_product(const std::vector<std::int64_t>& offsets, const std::vector<int>& nodes,
+                   const std::vector<std::array<Scalar, 6>>& blocks, const double* x, Eigen::VectorXd& y) {
+  const int nt = static_cast<int>(offsets.size()) - 1;
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < nt; ++t) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (std::int64_t i = offsets[t]; i < offsets[t + 1]; ++i) {
+      const std::array<Scalar, 6>& s = blocks[i];
+      const double b0 = s[0], b1 = s[1], b2 = s[2], b3 = s[3], b4 = s[4], b5 = s[5];
+      const double* v = x + 3 * static_cast<std::size_t>(nodes[i]);
+      y0 += b0 * v[0] + b1 * v[1] + b2 * v[2];
+      y1 += b1 * v[0] + b3 * v[1] + b4 * v[2];
+      y2 += b2 * v[0] + b4 * v[1] + b5 * v[2];
+    }
+    y[3 * t] = y0;
+    y[3 * t + 1] = y1;
+    y[3 * t + 2] = y2;
+  }
+}
+
+}  // namespace
 
 Eigen::VectorXd SymmetricBlockMatrix::operator*(const Eigen::VectorXd& f) const {
   if (f.size() != 3 * static_cast<Eigen::Index>(num_nodes_))
     throw std::invalid_argument("SymmetricBlockMatrix: " + std::to_string(f.size()) + " values for " +
                                 std::to_string(num_nodes_) + " nodes");
   Eigen::VectorXd y(3 * static_cast<Eigen::Index>(num_targets()));
-  const double* x = f.data();
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < num_targets(); ++t) {
-    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
-    for (std::int64_t i = offsets_[t]; i < offsets_[t + 1]; ++i) {
-      const std::array<double, 6>& b = blocks_[i];
-      const double* v = x + 3 * static_cast<std::size_t>(nodes_[i]);
-      y0 += b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-      y1 += b[1] * v[0] + b[3] * v[1] + b[4] * v[2];
-      y2 += b[2] * v[0] + b[4] * v[1] + b[5] * v[2];
-    }
-    y[3 * t] = y0;
-    y[3 * t + 1] = y1;
-    y[3 * t + 2] = y2;
+  if (precision_ == Precision::single_entries) {
+    block_product(offsets_, nodes_, single_, f.data(), y);
+  } else {
+    block_product(offsets_, nodes_, blocks_, f.data(), y);
   }
   return y;
 }
 
 std::size_t SymmetricBlockMatrix::memory_bytes() const {
-  return heap_bytes(offsets_) + heap_bytes(nodes_) + heap_bytes(blocks_);
+  return heap_bytes(offsets_) + heap_bytes(nodes_) + heap_bytes(blocks_) + heap_bytes(single_);
 }
 
 }  // namespace rbcflow

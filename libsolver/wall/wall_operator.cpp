@@ -42,9 +42,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, tol, box, n, m, use, grid_ranks),
                  wrapped(elements_->points, box), wrapped(targets_, box));
   if (real_space == RealSpace::assembled) {
+    const auto precision = ewald_tolerance >= kSingleBlocksTolerance ? SymmetricBlockMatrix::Precision::single_entries
+                                                                     : SymmetricBlockMatrix::Precision::double_entries;
     near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),
                                                   Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction),
-                                                  owned_block(static_cast<int>(targets_.rows()), ranks_)));
+                                                  owned_block(static_cast<int>(targets_.rows()), ranks_), precision));
     node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
     ewald_->release_real_space();                   // held in near_and_real_ now
     near_.correction = Eigen::SparseMatrix<double>();  // so is this

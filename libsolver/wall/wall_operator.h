@@ -20,6 +20,15 @@
 
 namespace rbcflow {
 
+// The assembled near field and real-space part (RealSpace::assembled) keep single-precision
+// entries for a tolerance of at least this. Rounded, an entry moves by at most 2^-24 (6e-8) of
+// itself, so a product by at most 6e-8 of the sum of its terms' magnitudes, a 16th of this
+// tolerance; a small tube's products move by 2-3e-8 of their size (test_symmetric_block_matrix),
+// within the tenth of the tolerance the assembled part is built for (kAssembledToleranceFactor).
+// It halves the largest structure of the wall solve (1.06 of the 16 MB a cell holds at a
+// thousand cells) and what its products read.
+inline constexpr double kSingleBlocksTolerance = 1e-6;
+
 class WallOperator {
  public:
   // Free space (direct O(targets x Gauss points) sums; for tests and small walls).
@@ -37,7 +46,8 @@ class WallOperator {
   // on every rank whole (the product then has the same bits as on one rank).
   // `assembled_use` (RealSpace::assembled): the cost model's weight of a pair and the bound on
   // the pairs the matrix holds; any bound meets the tolerance, a cutoff inside the near field's
-  // reach included.
+  // reach included. The assembled blocks keep their entries in single precision when
+  // `ewald_tolerance` is at least kSingleBlocksTolerance.
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,

@@ -91,8 +91,8 @@ Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& e, const 
 }
 
 SymmetricBlockMatrix wall_real_space_blocks(const WallElements& e, const NeighborList& pairs, double xi,
-                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus,
-                                            OwnedRange rows) {
+                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, OwnedRange rows,
+                                            SymmetricBlockMatrix::Precision precision) {
   if (plus.rows() != 3 * static_cast<Eigen::Index>(pairs.n_targets()) || plus.cols() != 3 * e.num_nodes())
     throw std::invalid_argument("wall_real_space_blocks: the added matrix must be 3 targets x 3 nodes");
   const EwaldRealKernel kernel(xi);
@@ -101,7 +101,7 @@ SymmetricBlockMatrix wall_real_space_blocks(const WallElements& e, const Neighbo
     if (!rows.contains(t)) return;
     real_space_row(e, pairs, kernel, &plus, t, scratch[omp_get_thread_num()],
                    [&](int node, const Eigen::Matrix3d& b) { row.emplace_back(node, b); });
-  });
+  }, precision);
 }
 
 }  // namespace rbcflow

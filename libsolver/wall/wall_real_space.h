@@ -35,8 +35,9 @@ Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& elements,
 // assembled row by row: the operator's form (wall_operator.h), without the scalar matrices in
 // between, which took ten times its memory at the peak of the set-up. Only the targets in
 // `rows` get their blocks (a rank's share, parallel/ownership.h); the others' rows stay empty.
-SymmetricBlockMatrix wall_real_space_blocks(const WallElements& elements, const NeighborList& pairs, double xi,
-                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus,
-                                            OwnedRange rows);
+SymmetricBlockMatrix wall_real_space_blocks(
+    const WallElements& elements, const NeighborList& pairs, double xi,
+    const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, OwnedRange rows,
+    SymmetricBlockMatrix::Precision precision = SymmetricBlockMatrix::Precision::double_entries);
 
 }  // namespace rbcflow

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <vector>
@@ -9,6 +11,7 @@
 #include "geometry/vessel/vessel.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/wall/near_field.h"
+#include "libsolver/wall/wall_operator.h"
 #include "libsolver/wall/wall_real_space.h"
 
 using namespace rbcflow;
@@ -82,6 +85,53 @@ TEST(SymmetricBlockMatrix, HoldsTheWallNearFieldAndRealSpaceParts) {
   EXPECT_TRUE(a.tail(3 * (n - owned_block(n, 0, 2).end)).isZero(0.0));
   EXPECT_TRUE(z.head(3 * owned_block(n, 1, 2).begin).isZero(0.0));
   EXPECT_EQ(a + z, whole);
+  // In single precision (WallOperator's form for tolerances of kSingleBlocksTolerance = 1e-6
+  // and more): the products of random and of smooth densities stay within the tenth of the
+  // tolerance the assembled part is built for (kAssembledToleranceFactor); measured 2.8e-8 and
+  // 1.7e-8.
+  const SymmetricBlockMatrix single = wall_real_space_blocks(e, pairs, c.parameters.xi, near, OwnedRange{0, n},
+                                                             SymmetricBlockMatrix::Precision::single_entries);
+  PointField smooth(n, 3);
+  for (int i = 0; i < n; ++i) smooth.row(i) << 1.0, 0.3 * std::sin(nodes(i, 2)), 0.2 * std::cos(nodes(i, 0));
+  const Eigen::MatrixXd by_node = smooth.transpose();  // index 3 i + k
+  const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(by_node.data(), 3 * n);
+  for (const Eigen::VectorXd* density : {&f, &g}) {
+    const Eigen::VectorXd exact = rows * *density;
+    const double moved = (single * *density - exact).norm() / exact.norm();
+    std::printf("single-precision blocks: product moved by %.2e of its norm\n", moved);
+    EXPECT_LT(moved, kAssembledToleranceFactor * kSingleBlocksTolerance);
+  }
+}
+
+// Single-precision entries: the product is that of the matrix with each entry rounded to float
+// (the sums in double), so each row moves by at most 2^-24 of the sum of its terms' magnitudes.
+TEST(SymmetricBlockMatrix, SingleEntriesAreTheRoundedMatrix) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> m = random_symmetric_blocks(60, 45, 5);
+  const int nt = 60, nn = 45;
+  const auto row = [&m](int t, SymmetricBlockMatrix::Row& blocks) {
+    for (int n = 0; n < 45; ++n) {
+      Eigen::Matrix3d b;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) b(k, l) = m.coeff(3 * t + k, 3 * n + l);
+      if (!b.isZero(0.0)) blocks.emplace_back(n, b);
+    }
+  };
+  const SymmetricBlockMatrix single(nt, nn, row, SymmetricBlockMatrix::Precision::single_entries);
+  const SymmetricBlockMatrix full(nt, nn, row);
+  EXPECT_EQ(single.precision(), SymmetricBlockMatrix::Precision::single_entries);
+  EXPECT_EQ(single.num_blocks(), full.num_blocks());
+  EXPECT_LT(single.memory_bytes(), 0.6 * full.memory_bytes());  // 28 against 52 bytes a block
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rounded = m;
+  for (Eigen::Index k = 0; k < rounded.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rounded, k); it; ++it)
+      it.valueRef() = static_cast<float>(it.value());
+  const Eigen::VectorXd f = Eigen::VectorXd::Random(3 * nn);
+  const Eigen::VectorXd expected = rounded * f;
+  EXPECT_LT((single * f - expected).norm(), 1e-14 * expected.norm());
+  const Eigen::VectorXd magnitudes = m.cwiseAbs() * f.cwiseAbs();
+  const Eigen::VectorXd moved = (single * f - m * f).cwiseAbs();
+  for (Eigen::Index i = 0; i < moved.size(); ++i) EXPECT_LE(moved[i], 0x1p-24 * magnitudes[i] + 1e-15 * magnitudes[i]);
+  EXPECT_GT((single * f - full * f).norm(), 0.0);  // rounded indeed
 }
 
 TEST(SymmetricBlockMatrix, RejectsWhatItCannotHold) {
