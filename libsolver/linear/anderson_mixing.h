@@ -13,6 +13,10 @@
 // vectors. The least-squares problem is solved from its m x m normal equations by a
 // rank-revealing decomposition: m is small, and near convergence the columns of dG become
 // nearly dependent; the rank cut then drops the redundant directions.
+//
+// The next iterate is a combination of the F(x_i), so its image under any linear map L is the
+// same combination of the L F(x_i): given those (a solve's by-product: GMRES returns A x for
+// its x), next() returns L x_{k+1} without applying L.
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <deque>
@@ -27,18 +31,39 @@ class AndersonMixing {
   }
 
   // Given the iterate x and its image F(x), returns the next iterate.
-  Eigen::MatrixXd next(const Eigen::MatrixXd& x, const Eigen::MatrixXd& f) {
+  Eigen::MatrixXd next(const Eigen::MatrixXd& x, const Eigen::MatrixXd& f) { return advance(x, f, nullptr, nullptr); }
+  // The same, given also L F(x) for a linear map L, and sets next_image to L x_{k+1} (it may be
+  // f_image itself). Give the images at every call or at none (std::logic_error otherwise).
+  Eigen::MatrixXd next(const Eigen::MatrixXd& x, const Eigen::MatrixXd& f, const Eigen::MatrixXd& f_image,
+                       Eigen::MatrixXd& next_image) {
+    return advance(x, f, &f_image, &next_image);
+  }
+
+  int depth() const { return depth_; }
+  int history() const { return static_cast<int>(dG_.size()); }
+
+ private:
+  Eigen::MatrixXd advance(const Eigen::MatrixXd& x, const Eigen::MatrixXd& f, const Eigen::MatrixXd* f_image,
+                          Eigen::MatrixXd* next_image) {
+    const bool first = previous_g_.size() == 0;
+    if (first) with_images_ = f_image != nullptr;
+    if ((f_image != nullptr) != with_images_)
+      throw std::logic_error("AndersonMixing: the images must be given at every call or at none");
     Eigen::MatrixXd g = f - x;
-    if (previous_g_.size() > 0 && depth_ > 0) {
+    if (!first && depth_ > 0) {
       dG_.push_back(g - previous_g_);
       dF_.push_back(f - previous_f_);
+      if (with_images_) dL_.push_back(*f_image - previous_image_);
       if (static_cast<int>(dG_.size()) > depth_) {
         dG_.pop_front();
         dF_.pop_front();
+        if (with_images_) dL_.pop_front();
       }
     }
+    if (with_images_) previous_image_ = *f_image;  // before *next_image is written: they may be one
     const int m = static_cast<int>(dG_.size());
     Eigen::MatrixXd next = f;
+    if (with_images_) *next_image = previous_image_;
     if (m > 0) {
       Eigen::MatrixXd gram(m, m);
       Eigen::VectorXd rhs(m);
@@ -48,21 +73,20 @@ class AndersonMixing {
       }
       const Eigen::VectorXd gamma = gram.completeOrthogonalDecomposition().solve(rhs);
       for (int i = 0; i < m; ++i) next -= gamma[i] * dF_[i];
+      if (with_images_)
+        for (int i = 0; i < m; ++i) *next_image -= gamma[i] * dL_[i];
     }
     previous_g_ = std::move(g);
     previous_f_ = f;
     return next;
   }
 
-  int depth() const { return depth_; }
-  int history() const { return static_cast<int>(dG_.size()); }
-
- private:
   static double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
 
   int depth_;
-  std::deque<Eigen::MatrixXd> dG_, dF_;
-  Eigen::MatrixXd previous_g_, previous_f_;
+  bool with_images_ = false;
+  std::deque<Eigen::MatrixXd> dG_, dF_, dL_;  // dL_: differences of the images L F(x_i)
+  Eigen::MatrixXd previous_g_, previous_f_, previous_image_;
 };
 
 }  // namespace rbcflow

@@ -59,26 +59,35 @@ struct RecycledSpace {
   }
 };
 
+//
+// `image` (optional): on entry, when it has b's size, A x for the initial x, which the first
+// residual then takes instead of a product; on return, A x for the returned x, from the
+// Arnoldi relation (b less the residual the cycle leaves) where the solve ends in a cycle:
+// what a caller whose next guess is a combination of solutions needs, at no product.
 template <typename Operator, typename Preconditioner>
 GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eigen::VectorXd& b,
                                  Eigen::VectorXd& x, double tolerance, int max_iterations,
-                                 int restart = 60, RecycledSpace* recycled = nullptr) {
+                                 int restart = 60, RecycledSpace* recycled = nullptr,
+                                 Eigen::VectorXd* image = nullptr) {
   GmresReport report;
   const double b_norm = b.norm();
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
   if (b_norm == 0.0) {
     x.setZero();
+    if (image) *image = Eigen::VectorXd::Zero(b.size());
     report.converged = true;
     return report;
   }
+  bool image_known = image && image->size() == b.size();
   while (true) {
-    Eigen::VectorXd r = b - A(x);
+    Eigen::VectorXd r = b - (image_known ? *image : Eigen::VectorXd(A(x)));
+    image_known = false;  // a restart recomputes the residual
     report.relative_residual = r.norm() / b_norm;
-    if (report.relative_residual <= tolerance) {
-      report.converged = true;
+    if (report.relative_residual <= tolerance || report.iterations >= max_iterations) {
+      report.converged = report.relative_residual <= tolerance;
+      if (image) *image = b - r;
       return report;
     }
-    if (report.iterations >= max_iterations) return report;
     const int p = recycled ? recycled->size() : 0;
     if (p > 0) {  // the part of r in range(C), removed exactly
       const Eigen::VectorXd c = recycled->C.transpose() * r;
@@ -136,6 +145,11 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     if (std::abs(g[k]) <= tolerance * b_norm) {
       report.relative_residual = std::abs(g[k]) / b_norm;
       report.converged = true;
+      if (image) {  // A M^{-1} z = V_{k+1} Hbar y: the residual left is r - V_{k+1} Hbar y
+        const Eigen::VectorXd h = Hbar.topLeftCorner(k + 1, k) * y;
+        for (int j = 0; j <= k && j < static_cast<int>(V.size()); ++j) r -= h[j] * V[j];
+        *image = b - r;
+      }
       return report;
     }
   }
@@ -144,9 +158,9 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
 // Unpreconditioned (M = I): for operators as well conditioned as the cells' A11 of (10).
 template <typename Operator>
 GmresReport gmres(Operator&& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance, int max_iterations,
-                  int restart = 60) {
+                  int restart = 60, Eigen::VectorXd* image = nullptr) {
   return preconditioned_gmres(std::forward<Operator>(A), [](const Eigen::VectorXd& v) { return v; }, b, x, tolerance,
-                              max_iterations, restart);
+                              max_iterations, restart, nullptr, image);
 }
 
 }  // namespace rbcflow

@@ -239,7 +239,9 @@ FlowSolution CellStepper::solve() const {
   // (10): the cell velocity for the wall force just found. The wall operator at the cell nodes
   // is built once for all the start sweeps.
   std::optional<WallOperator> wall_at_cells;
-  auto solve_cells = [&](const Eigen::MatrixXd& guess) {
+  // `image`: the left-hand side of (10) at `guess` when known (in: saves a product), and at the
+  // solution (out); see solve_cell_velocity.
+  auto solve_cells = [&](const Eigen::MatrixXd& guess, Eigen::MatrixXd* image) {
     Eigen::MatrixXd background(nc * np, 3);
     if (options_.domain.box) {
       background.rowwise() = s.mean_velocity.transpose();
@@ -265,7 +267,7 @@ FlowSolution CellStepper::solve() const {
     ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v =
         solve_cell_velocity(*layers, s.traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
-                            options_.gmres_max_iterations, guess);
+                            options_.gmres_max_iterations, guess, image);
     products_timer.stop();
     timing.cell_corrections = layers->build_timings().applied;
     const EwaldTimings& ewald = layers->build_timings().double_layer_ewald;
@@ -287,7 +289,8 @@ FlowSolution CellStepper::solve() const {
     const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
     if (start_sweeps) sweep_tolerance = kStartSweepForcing;  // U = 0 in (12): an O(1) change to come
     if (wall_) solve_wall(previous_velocity, force_guess);
-    if (nc > 0) solve_cells(velocity_guess);
+    Eigen::MatrixXd image;  // of the cell velocity under (10)'s left-hand side
+    if (nc > 0) solve_cells(velocity_guess, start_sweeps ? &image : nullptr);
     // The first step has no U^{n-1} for the double layer in (12): sweep (12) and (10) until U
     // settles (to kStartSweepTolerance: later steps lag U by one step, an O(dt) error, anyway),
     // so that the run starts close to the solution of the coupled system (9). The sweep map
@@ -295,6 +298,9 @@ FlowSolution CellStepper::solve() const {
     // sweep in a tube at H_T = 0.3) into a Krylov method. Each sweep's solves stop at
     // kStartSweepForcing times the last change of U (an inexact fixed-point iteration, in the
     // manner of Eisenstat & Walker's forcing terms), the last at the solves' own tolerances.
+    // Each U is a combination of the solved velocities, so the mixing also combines their
+    // images under (10)'s operator, which GMRES returns: a sweep's solve starts from U without
+    // a product.
     if (start_sweeps) {
       AndersonMixing mixing(kStartSweepDepth);
       Eigen::MatrixXd U = Eigen::MatrixXd::Zero(nc * np, 3);  // the U of the first solve's (12)
@@ -303,9 +309,9 @@ FlowSolution CellStepper::solve() const {
       for (int sweep = 0; sweep < kMaxStartSweeps; ++sweep) {
         sweep_tolerance = kStartSweepForcing * (s.velocity - U).norm() / s.velocity.norm();
         if (sweep_tolerance <= finest) sweep_tolerance = 0;
-        U = mixing.next(U, s.velocity);
+        U = mixing.next(U, s.velocity, image, image);
         solve_wall(U, s.wall_force);
-        solve_cells(U);
+        solve_cells(U, &image);
         s.start_sweeps = sweep + 1;
         if ((s.velocity - U).norm() <= settled * U.norm() && sweep_tolerance == 0) break;
       }

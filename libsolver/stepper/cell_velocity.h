@@ -17,8 +17,11 @@ struct VelocitySolve {
 };
 
 // mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3.
+// `image` (optional, stacked nodes x 3): on entry, when it has the velocity's shape, the
+// left-hand side of (6) for `initial_guess`, which saves the solve's first product; on return,
+// the left-hand side for the returned velocity (preconditioned_gmres.h: no product).
 VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& traction, double viscosity_ratio,
                                   const Eigen::MatrixXd& background, double tolerance, int max_iterations,
-                                  const Eigen::MatrixXd& initial_guess = {});
+                                  const Eigen::MatrixXd& initial_guess = {}, Eigen::MatrixXd* image = nullptr);
 
 }  // namespace rbcflow

@@ -127,3 +127,27 @@ TEST(AndersonMixing, ReachesTheFixedPointInAFractionOfThePlainSweeps) {
     }
   }
 }
+
+// The next iterate is a combination of the F(x_i), so the mixing carries their images under a
+// linear map L along: L x_{k+1} to rounding, at every sweep, with the history full and cut.
+TEST(AndersonMixing, CarriesTheImagesOfItsIterates) {
+  const AffineMap F(0.9, 4);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  const Eigen::MatrixXd L = Eigen::MatrixXd::NullaryExpr(2 * kN, 2 * kN, [&] { return g(rng); });
+  const auto image_of = [&](const Eigen::MatrixXd& x) {
+    return Eigen::MatrixXd((L * Eigen::VectorXd(x.reshaped())).reshaped(kN, 2));
+  };
+  AndersonMixing mixing(3), plain_mixing(3);
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(kN, 2), y = x;
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::MatrixXd f = F.apply(x);
+    Eigen::MatrixXd image = image_of(f);
+    x = mixing.next(x, f, image, image);  // the image given and returned in one matrix
+    y = plain_mixing.next(y, F.apply(y));
+    EXPECT_LT((image - image_of(x)).norm(), 1e-12 * image.norm()) << "sweep " << k;
+    EXPECT_EQ(x, y) << "sweep " << k;  // the images change nothing else
+  }
+  Eigen::MatrixXd image;
+  EXPECT_THROW(plain_mixing.next(y, F.apply(y), image_of(y), image), std::logic_error);
+}

@@ -153,6 +153,54 @@ TEST(PlainGmres, EndsWithoutRecomputingTheResidual) {
   }
 }
 
+// The image A x: returned for the solution from the Arnoldi relation (no product), and taken
+// on entry for the initial guess instead of the first product; the solve from a known image is
+// the solve from a computed one. Preconditioned and recycled too (the wall's form).
+TEST(PlainGmres, ReturnsAndTakesTheImageOfItsIterate) {
+  const auto [M, b] = near_identity_system(120, 5);
+  for (const int restart : {60, 7}) {
+    int products = 0;
+    const auto A = [&](const Eigen::VectorXd& v) {
+      ++products;
+      return Eigen::VectorXd(M * v);
+    };
+    Eigen::VectorXd x, image;
+    const GmresReport first = gmres(A, b, x, 1e-6, 500, restart, &image);
+    ASSERT_TRUE(first.converged);
+    EXPECT_LT((image - M * x).norm(), 1e-12 * b.norm()) << "restart " << restart;
+    // A second right-hand side from x, with and without the image.
+    const Eigen::VectorXd b2 = b + 0.1 * Eigen::VectorXd::Ones(b.size());
+    Eigen::VectorXd with = x, without = x, image2 = image;
+    products = 0;
+    const GmresReport r_with = gmres(A, b2, with, 1e-8, 500, restart, &image2);
+    const int products_with = products;
+    products = 0;
+    const GmresReport r_without = gmres(A, b2, without, 1e-8, 500, restart);
+    ASSERT_TRUE(r_with.converged && r_without.converged);
+    EXPECT_EQ(r_with.iterations, r_without.iterations);
+    EXPECT_EQ(products_with, products - 1) << "restart " << restart;
+    EXPECT_LT((with - without).norm(), 1e-12 * without.norm());
+    EXPECT_LT((b2 - M * with).norm(), 1e-8 * b2.norm());
+    EXPECT_LT((image2 - M * with).norm(), 1e-12 * b2.norm());
+  }
+  // Preconditioned (a diagonal M^{-1}) and with a recycled space grown by the first solve.
+  const Eigen::VectorXd d = M.diagonal().cwiseInverse();
+  const auto P = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(d.cwiseProduct(v)); };
+  const auto A = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(M * v); };
+  RecycledSpace space;
+  space.capacity = 10;
+  space.growing = true;
+  Eigen::VectorXd x, image;
+  ASSERT_TRUE(preconditioned_gmres(A, P, b, x, 1e-6, 500, 60, &space, &image).converged);
+  EXPECT_GT(space.size(), 0);
+  EXPECT_LT((image - M * x).norm(), 1e-12 * b.norm());
+  space.growing = false;
+  const Eigen::VectorXd b2 = 2 * b;
+  ASSERT_TRUE(preconditioned_gmres(A, P, b2, x, 1e-6, 500, 60, &space, &image).converged);
+  EXPECT_LT((image - M * x).norm(), 1e-12 * b2.norm());
+  EXPECT_LT((b2 - M * x).norm(), 1e-6 * b2.norm());
+}
+
 TEST(PlainGmres, ReportsNonConvergence) {
   const int n = 50;
   Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, 1e-6, 1.0);
