@@ -1,11 +1,12 @@
 // compare_runs CASE.toml DIR_A DIR_B STEP TOLERANCE [FLOOR]: exit 0 when the two output
-// directories hold the same checkpoint at STEP (every matrix within TOLERANCE, absolute), the
-// same frames in rbcflow.h5 where both have one (the same steps, surfaces and triangles; points
-// and fields within TOLERANCE relative to the largest entry of each) and the
-// same diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the larger
-// magnitude, or within FLOOR absolute: default 0; runs that sum in another order differ by
-// rounding in columns that are rounding errors themselves, such as max_volume_error ~ 1e-16);
-// prints the largest differences. A NaN against a number (or an empty field
+// directories hold the same checkpoint at STEP (every matrix within TOLERANCE relative to its
+// largest entry), the same frames in rbcflow.h5 where both have one (the same steps, surfaces
+// and triangles; points and fields within TOLERANCE relative to the largest entry of each) and
+// the same diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the
+// larger magnitude, the components of a vector (`name_x`, `name_y`, `name_z`) relative to the
+// vector's largest component, or within FLOOR absolute: default 0; runs that sum in another
+// order differ by rounding in columns that are rounding errors themselves, such as
+// max_volume_error ~ 1e-16); prints the largest differences. A NaN against a number (or an empty field
 // against one) is an infinite difference, never dropped; NaN against NaN is no difference. For
 // the restart test: an uninterrupted run against one stopped and restarted from a checkpoint.
 #include <algorithm>
@@ -31,11 +32,6 @@ double difference(double x, double y) {
   return std::abs(x - y);
 }
 
-double relative_difference(double x, double y) {
-  const double d = difference(x, y);
-  return d == 0.0 || std::isinf(d) ? d : d / std::max({std::abs(x), std::abs(y), 1e-300});
-}
-
 double max_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
   if (x.rows() != y.rows() || x.cols() != y.cols()) return INFINITY;
   double d = 0;
@@ -43,10 +39,34 @@ double max_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
   return d;
 }
 
-double field_difference(const std::string& a, const std::string& b, double floor) {
+// |x - y| relative to scale (at least |x| and |y|), or 0 within floor.
+double field_difference(const std::string& a, const std::string& b, double scale, double floor) {
   if (a.empty() || b.empty()) return a.empty() && b.empty() ? 0.0 : INFINITY;
   const double x = std::stod(a), y = std::stod(b);
-  return difference(x, y) <= floor ? 0.0 : relative_difference(x, y);
+  const double d = difference(x, y);
+  if (d <= floor) return 0.0;
+  return d == 0.0 || std::isinf(d) ? d : d / std::max({std::abs(x), std::abs(y), scale, 1e-300});
+}
+
+// The magnitude a column's entries are compared against in one row of each table: a vector's
+// largest component in either row for the components of a vector (a small lateral component of
+// the pressure gradient moves by the rounding of the whole vector), else 0 (the entries' own).
+double column_scale(const CsvTable& t, const CsvTable& u, std::size_t row, std::size_t k) {
+  const std::string& name = t.columns[k];
+  if (name.size() < 3 || name[name.size() - 2] != '_' || std::string("xyz").find(name.back()) == std::string::npos)
+    return 0.0;
+  double scale = 0;
+  for (const char c : std::string("xyz")) {
+    const std::string component = name.substr(0, name.size() - 1) + c;
+    const auto it = std::find(t.columns.begin(), t.columns.end(), component);
+    if (it == t.columns.end()) return 0.0;
+    const std::size_t j = static_cast<std::size_t>(it - t.columns.begin());
+    for (const CsvTable* table : {&t, &u}) {
+      const std::string& field = table->rows[row][j];
+      if (!field.empty() && std::isfinite(std::stod(field))) scale = std::max(scale, std::abs(std::stod(field)));
+    }
+  }
+  return scale;
 }
 
 double relative_max_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
@@ -111,8 +131,9 @@ int main(int argc, char** argv) {
       continue;  // not a double matrix: compared below when an integer or real
     }
     const double scale = ka.matrix(name).size() ? ka.matrix(name).cwiseAbs().maxCoeff() : 0.0;
-    std::printf("%-32s max |a - b| = %.3e  (/ max |a| = %.3e)\n", name.c_str(), d, scale > 0 ? d / scale : 0.0);
-    worst = std::max(worst, d);
+    const double relative = scale > 0 && std::isfinite(d) ? d / scale : d;
+    std::printf("%-32s max |a - b| = %.3e  (/ max |a| = %.3e)\n", name.c_str(), d, relative);
+    worst = std::max(worst, relative);
   }
   if (ka.integer("steps") != kb.integer("steps") || ka.real("time") != kb.real("time")) ok = false;
   ok = same_frames(a, b, tolerance) && ok;
@@ -128,7 +149,7 @@ int main(int argc, char** argv) {
     for (std::size_t r = 0; r < da.rows.size(); ++r) {
       for (std::size_t k = 0; k < da.columns.size(); ++k) {
         if (k == seconds || da.rows[r][k] == db.rows[r][k]) continue;
-        const double d = field_difference(da.rows[r][k], db.rows[r][k], floor);
+        const double d = field_difference(da.rows[r][k], db.rows[r][k], column_scale(da, db, r, k), floor);
         if (d > worst_row) {
           worst_row = d;
           worst_column = da.columns[k];
