@@ -63,7 +63,7 @@ class SpmeGrid {
   FftPlanning planning() const { return flags_ == FFTW_MEASURE ? FftPlanning::measure : FftPlanning::estimate; }
   std::size_t real_points() const;     // K1 K2 K3
   std::size_t complex_points() const;  // K1 K2 (K3/2 + 1)
-  std::size_t memory_bytes() const;    // influence function and wavenumbers (FFTW's plans not counted)
+  std::size_t memory_bytes() const;    // the influence function's factors (FFTW's plans not counted)
 
   // This rank's part of the grid: all of it unless distributed().
   bool distributed() const { return slab_ != nullptr; }
@@ -104,15 +104,21 @@ class SpmeGrid {
  private:
   PeriodicBox box_;
   EwaldParameters parameters_;
-  std::vector<double> influence_;      // 8 pi H(k)/(k^2 V |B|^2) per point of this rank's spectrum
   std::vector<double> wavenumber_[3];  // k_d of index m_d (signed; 0 on the Nyquist plane)
+  std::vector<double> damping_[3];     // exp(-c k_d^2) / |Bd(m_d)|^2 (0 on the Nyquist plane)
+  double damping_c_ = 0, scale_ = 0;   // c = 1/(4 xi^2); 8 pi / V
+  // The influence 8 pi H(k)/(k^2 V |B|^2) of wavevector (i, j, l) with 1/k^2 = inv_k2 (k != 0):
+  // 8 pi (1/k^2 + c) exp(-c k^2) / V / |B|^2 (ewald_fourier_scale), the exponential and the
+  // moduli taken direction by direction.
+  double influence(int i, int j, int l, double inv_k2) const {
+    return scale_ * (inv_k2 + damping_c_) * damping_[0][i] * damping_[1][j] * damping_[2][l];
+  }
   struct LazyPlan {
     std::once_flag made;
     fftw_plan plan = nullptr;
   };
   // The plan, made on `on` (overwritten) or, when null, on an array of its own if not made yet.
   fftw_plan plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const;
-  std::size_t spectrum_points() const;  // of this rank's spectrum (the influence function's)
   // Calls f(m, i, j, l) for every wavevector (i, j, l) of this rank's spectrum, m its index
   // there (spectra interleave their components: component c of m at C m + c); parallel.
   template <class F>

@@ -156,6 +156,8 @@ TEST(SpmeGrid, MeasuredTransformsArePlannedOnTheWorkArray) {
 TEST(SpmeGrid, InfluenceFunctionPerMode) {
   const SpmeGrid grid(kBox, kParams);
   const std::size_t points = grid.complex_points();
+  // No table of the spectrum: the wavenumbers and the influence function's factors per direction.
+  EXPECT_LE(grid.memory_bytes(), 2 * sizeof(double) * (16 + 20 + (12 / 2 + 1)));
   FftwBuffer<fftw_complex> f(3 * points), diagonal(3 * points), off_diagonal(3 * points), u(3 * points);
   for (std::size_t i = 0; i < 3 * points; ++i) f.data()[i][0] = f.data()[i][1] = 1.0;
   const Eigen::Vector3d q(0.3, -1.0, 0.5), n(0.6, 0.0, 0.8);
