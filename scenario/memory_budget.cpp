@@ -67,12 +67,18 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
     const double Q = 2.0 * radial * radial;
     const double H = s.tube_hematocrit.value_or(0.0);
     m.parts.push_back({"cells' geometry", cells * (2 * (2 * N + 1) * 4 * N * 96 + 56 * P), 1.0});
+    const EwaldSum* e = find_sum(s, "cells, double layer");
     if (double_layer) {
-      m.parts.push_back({"singular corrections", cells * (P * Q * 24 + 2.3 * P * P), 1.0});
+      // Node entries hold the patch nodes beyond the fold radius, min(r_c, half the box's
+      // smallest side), and within the cutoff (singular_quadrature.h NodeShares): none when the
+      // box is at least twice the cutoff across; all of the patch's in free space.
+      const double side = std::min({s.c.domain.box[0], s.c.domain.box[1], s.c.domain.box[2]});
+      const double node_entries = !e || e->choice.parameters.cutoff > 0.5 * side ? 1.0 : 0.0;
+      m.parts.push_back({"singular corrections", cells * (P * Q * 24 + node_entries * 2.3 * P * P), 1.0});
       const double near_targets = P * std::max(0.05, 2.0 * H);
-      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 36 + 2250), 1.0});
+      m.parts.push_back({"nearly-singular corrections", cells * near_targets * (Q * 36 + node_entries * 2250), 1.0});
     }
-    if (const EwaldSum* e = find_sum(s, "cells, double layer")) {
+    if (e) {
       const double nodes = cells * P;
       const double volume = s.lumen_volume.value_or(s.c.domain.box[0] * s.c.domain.box[1] * s.c.domain.box[2]);
       const double rc = e->choice.parameters.cutoff;

@@ -7,6 +7,8 @@
 //   singular (self)      double layer: P Q float kernels of 6 + 2.3 P^2 bytes of node entries
 //   nearly singular      double layer: 2 H P near targets per cell (at least 0.05 P), each
 //                        Q (12 + 24) bytes (stencil, kernel) + 2.25 kB of node entries
+//                        (node entries: the patch nodes within the real-space cutoff but
+//                        beyond half the box, none where the box is twice the cutoff across)
 //   cells' Ewald sum     double layer: pairs = nodes x (4 pi/3) r_c^3 x nodes / lumen volume
 //                        (the cells fill the lumen, not the box), 2.2 bytes each in the coded
 //                        list (bench_spme BM_NeighborList) and

@@ -64,23 +64,24 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   }
   // The Ewald grids first: the corrections need their xi, and leave the patch nodes within
   // the real-space cutoff (their nearest images) to the real-space sums, which weight those
-  // pairs by 1 - eta (PairShares) instead of the corrections removing eta K w. The grids are
-  // chosen for all the cells' nodes, on every rank alike.
+  // pairs by 1 - eta (PairShares) instead of the corrections removing eta K w; the nodes beyond
+  // the cutoff are in no real-space sum, and have no share to remove (NodeShares). The grids
+  // are chosen for all the cells' nodes, on every rank alike.
   std::shared_ptr<const SpmeGrid> single_grid, double_grid;
   double xi_single = 0.0, xi_double = 0.0;
-  std::array<double, 2> fold_radius{0.0, 0.0};
+  std::array<NodeShares, 2> node_shares{};
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
     single_grid = ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np, -1, {},
                              domain_.ranks);
     xi_single = single_grid->parameters().xi;
-    fold_radius[0] = pair_share_radius(box, single_grid->parameters().cutoff);
+    node_shares[0] = {pair_share_radius(box, single_grid->parameters().cutoff), single_grid->parameters().cutoff};
     if (with_double_layer) {
       double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
                                double_layer_real_space(domain_.max_kept_pairs, domain_.ewald_tolerance, box, nc * np),
                                domain_.ranks);
       xi_double = double_grid->parameters().xi;
-      fold_radius[1] = pair_share_radius(box, double_grid->parameters().cutoff);
+      node_shares[1] = {pair_share_radius(box, double_grid->parameters().cutoff), double_grid->parameters().cutoff};
     }
   }
   geometry_timer.stop();
@@ -88,7 +89,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
   // of folding them into the plan's pair shares, which would be held through every cell's
   // build (8 bytes a folded node, as many as the double layer's).
-  if (single_density_) fold_radius[0] = 0.0;
+  if (single_density_) node_shares[0].fold = 0.0;
   self_single_.resize(nc);
   self_double_.resize(nc);
   near_.resize(nc);
@@ -110,10 +111,10 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     const auto targets = cells_[c]->node_targets();
     if (with_double_layer) {
       std::tie(self_single_[c], self_double_[c]) =
-          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets, fold_radius);
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets, node_shares);
     } else {
       self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets,
-                                                          fold_radius[0]);
+                                                          node_shares[0]);
     }
     if (single_density_) single_corrections.middleRows(c * np, np) = apply_now(c, self_single_[c]);
   }
@@ -132,10 +133,10 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     if (near_targets.empty()) continue;
     if (with_double_layer) {
       std::tie(near_[c].single, near_[c].double_) =
-          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, near_targets, fold_radius);
+          LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, near_targets, node_shares);
     } else {
       near_[c].single = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single},
-                                                          near_targets, fold_radius[0]);
+                                                          near_targets, node_shares[0]);
     }
     if (single_density_) near_single[c] = apply_now(c, near_[c].single);
   }

@@ -1,5 +1,6 @@
 #include "cell_layers_at_points.h"
 
+#include <array>
 #include <stdexcept>
 #include <tuple>
 
@@ -24,15 +25,19 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   const int np = layers.nodes_per_cell();
   const bool with_double = layers.has_double_layer();
   double xi_single = 0.0, xi_double = 0.0;
+  // The corrections remove the shares of the patch nodes within the real-space cutoff: the
+  // sums hold no pair beyond it (NodeShares::reach).
+  std::array<NodeShares, 2> node_shares{};
   if (domain.box) {
     const PeriodicBox& box = *domain.box;
     // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's
     // real-space sources (ewald_plan.h). A rank without cells takes part in the transforms of
     // a grid split over the ranks.
-    auto plan = [&](EwaldKernel kernel, double& xi) -> std::unique_ptr<EwaldPlan> {
+    auto plan = [&](EwaldKernel kernel, double& xi, NodeShares& shares) -> std::unique_ptr<EwaldPlan> {
       auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows(), {},
                              domain.ranks);
       xi = grid->parameters().xi;
+      shares.reach = grid->parameters().cutoff;
       if (owned.empty() && !grid->distributed()) return nullptr;
       // No kept pair coefficients: a step applies each layer here once (the single layer in
       // the build, the double layer in (12)), but for the first step's start sweeps; kept, they
@@ -42,8 +47,8 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
       p->keep_pairs_up_to(0);
       return p;
     };
-    single_plan_ = plan(EwaldKernel::stokeslet, xi_single);
-    if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double);
+    single_plan_ = plan(EwaldKernel::stokeslet, xi_single, node_shares[0]);
+    if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double, node_shares[1]);
   }
   near_.resize(nc);
   std::vector<Eigen::MatrixXd> near_single(nc);
@@ -54,10 +59,10 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     near_[c].rows = std::move(near.rows);
     if (with_double) {
       std::tie(near_[c].single, near_[c].double_) =
-          LayerCorrection::single_and_double(layers.cell_geometry(c), xi_single, xi_double, near.targets);
+          LayerCorrection::single_and_double(layers.cell_geometry(c), xi_single, xi_double, near.targets, node_shares);
     } else {
       near_[c].single = std::make_unique<LayerCorrection>(layers.cell_geometry(c), LayerKernel{Layer::single, xi_single},
-                                                          near.targets);
+                                                          near.targets, node_shares[0]);
     }
     if (single_density_) {
       near_single[c] = near_[c].single->apply(single_density_->middleRows(c * np, np));

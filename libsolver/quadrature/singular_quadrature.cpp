@@ -116,23 +116,23 @@ void CellQuadratureGeometry::geometry_at(const HermiteStencil& s, Eigen::Vector3
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                                 std::vector<QuadratureTarget> targets, double fold_radius)
-    : LayerCorrection(std::move(cell), kernel, std::move(targets), fold_radius, Unbuilt{}) {
+                                 std::vector<QuadratureTarget> targets, NodeShares shares)
+    : LayerCorrection(std::move(cell), kernel, std::move(targets), shares, Unbuilt{}) {
   LayerCorrection* self = this;
   build({&self, 1});
 }
 
 LayerCorrection::LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                                 std::vector<QuadratureTarget> targets, double fold_radius, Unbuilt)
-    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)), fold_radius_(fold_radius) {}
+                                 std::vector<QuadratureTarget> targets, NodeShares shares, Unbuilt)
+    : cell_(std::move(cell)), kernel_(kernel), targets_(std::move(targets)), shares_(shares) {}
 
 std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> LayerCorrection::single_and_double(
     const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
-    const std::vector<QuadratureTarget>& targets, std::array<double, 2> fold_radius) {
+    const std::vector<QuadratureTarget>& targets, std::array<NodeShares, 2> shares) {
   std::unique_ptr<LayerCorrection> single(
-      new LayerCorrection(cell, LayerKernel{Layer::single, xi_single}, targets, fold_radius[0], Unbuilt{}));
+      new LayerCorrection(cell, LayerKernel{Layer::single, xi_single}, targets, shares[0], Unbuilt{}));
   std::unique_ptr<LayerCorrection> double_(
-      new LayerCorrection(cell, LayerKernel{Layer::double_, xi_double}, targets, fold_radius[1], Unbuilt{}));
+      new LayerCorrection(cell, LayerKernel{Layer::double_, xi_double}, targets, shares[1], Unbuilt{}));
   LayerCorrection* both[2] = {single.get(), double_.get()};
   build(both);
   return {std::move(single), std::move(double_)};
@@ -270,7 +270,8 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       c->patch_offsets_[t + 1] = static_cast<std::int64_t>(per_table);
     for_each_patch_node(t, [&](int p, double) {
       const double distance = (Eigen::Vector3d(nodes.x.row(p)) - targets[t].x).norm();
-      for (LayerCorrection* c : corrections) ++(distance < c->fold_radius_ ? c->folded_offsets_ : c->node_offsets_)[t + 1];
+      for (LayerCorrection* c : corrections)
+        if (distance < c->shares_.reach) ++(distance < c->shares_.fold ? c->folded_offsets_ : c->node_offsets_)[t + 1];
     });
   }
   for (LayerCorrection* c : corrections) {
@@ -318,12 +319,14 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       }
     }
     // The regular rule's share of the patch, eta K w at the nodes inside it, is removed here,
-    // or by the caller for the nodes within its fold radius.
+    // or by the caller for the nodes within its fold radius; none beyond the reach.
     std::array<std::int64_t, 2> kept{}, folded{};  // cursors (one or two corrections)
     for (std::size_t i = 0; i < corrections.size(); ++i) {
       kept[i] = corrections[i]->node_offsets_[t];
       folded[i] = corrections[i]->folded_offsets_[t];
     }
+    std::int64_t unvisited = 0;  // patch nodes of the target not yet visited, this one included
+    for_each_patch_node(t, [&](int, float) { ++unvisited; });
     for_each_patch_node(t, [&](int p, float eta) {
       const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.row(p)) - target.x;
       const double distance = r.norm();
@@ -331,8 +334,14 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
       for (std::size_t i = 0; i < corrections.size(); ++i) {
         LayerCorrection* c = corrections[i];
         // As counted above; should the compiler round the distance differently here, a node
-        // at the fold radius may change sides, never overrun the target's ranges.
-        bool fold = distance < c->fold_radius_;
+        // at the reach or the fold radius may change sides: the target's ranges are filled,
+        // never overrun.
+        const std::int64_t open = c->node_offsets_[t + 1] - kept[i] + c->folded_offsets_[t + 1] - folded[i];
+        bool beyond = distance >= c->shares_.reach;
+        if (beyond && open == unvisited) beyond = false;
+        if (!beyond && open == 0) beyond = true;
+        if (beyond) continue;
+        bool fold = distance < c->shares_.fold;
         if (fold && folded[i] == c->folded_offsets_[t + 1]) fold = false;
         if (!fold && kept[i] == c->node_offsets_[t + 1]) fold = true;
         if (fold) {
@@ -348,6 +357,7 @@ void LayerCorrection::build(std::span<LayerCorrection* const> corrections) {
           c->nodes_[kept[i]++] = {p, pack(k)};
         }
       }
+      --unvisited;
     });
   }
   if (!o.compact_tables) return;

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -99,23 +100,34 @@ class CellQuadratureGeometry {
 // rank builds (operators/cell_layers.h).
 SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids);
 
+// Which of the regular rule's nodes inside a patch (other than the target's own) the correction
+// removes the share eta K w of, by their distance d from the target. The caller's regular sum
+// is direct (every node) or an Ewald real-space sum of the screened kernel over the pairs
+// closer than its cutoff.
+struct NodeShares {
+  // d < fold: left to the caller's regular sum, which weights them by 1 - eta itself (folded();
+  // an Ewald real-space sum whose cutoff and nearest image reach them: spme/real_space_sum.h
+  // PairShares). 0: the correction removes them.
+  double fold = 0.0;
+  // d >= reach: the caller's sum has no such pair (the real-space cutoff), so there is no share
+  // to remove; the patch integral still covers them. Removing one would add -eta K w of a kernel
+  // that the Ewald split truncates there, an error of the order of the truncation's own.
+  double reach = std::numeric_limits<double>::infinity();
+};
+
 class LayerCorrection {
  public:
-  // fold_radius: nodes of the patch closer than this to the target are left to the caller's
-  // regular sum, which weights them by 1 - eta itself (folded(); an Ewald real-space sum whose
-  // cutoff and nearest image reach them: spme/real_space_sum.h PairShares); the correction then
-  // neither builds nor applies their -eta K w. 0: the correction removes every node's share.
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                  std::vector<QuadratureTarget> targets, double fold_radius = 0.0);
+                  std::vector<QuadratureTarget> targets, NodeShares shares = {});
   // The single- and double-layer corrections of the same targets, built together: the patch
   // geometry (points, interpolated x and J n, the regular rule's nodes inside) is computed once.
   static std::pair<std::unique_ptr<LayerCorrection>, std::unique_ptr<LayerCorrection>> single_and_double(
       const std::shared_ptr<const CellQuadratureGeometry>& cell, double xi_single, double xi_double,
-      const std::vector<QuadratureTarget>& targets, std::array<double, 2> fold_radius = {0.0, 0.0});
+      const std::vector<QuadratureTarget>& targets, std::array<NodeShares, 2> shares = {});
 
   int num_targets() const { return static_cast<int>(targets_.size()); }
   const std::vector<QuadratureTarget>& targets() const { return targets_; }
-  // The patch nodes of target t whose share the caller removes (see fold_radius), held as long
+  // The patch nodes of target t whose share the caller removes (NodeShares::fold), held as long
   // as the correction (the pair shares of the caller's real-space sums point to them).
   std::span<const PatchNode> folded(int t) const {
     if (folded_offsets_.empty()) return {};
@@ -138,7 +150,7 @@ class LayerCorrection {
  private:
   struct Unbuilt {};
   LayerCorrection(std::shared_ptr<const CellQuadratureGeometry> cell, LayerKernel kernel,
-                  std::vector<QuadratureTarget> targets, double fold_radius, Unbuilt);
+                  std::vector<QuadratureTarget> targets, NodeShares shares, Unbuilt);
   // Fills stencils_, patch_k_ and nodes_ of corrections that share their cell and targets.
   static void build(std::span<LayerCorrection* const> corrections);
 
@@ -177,7 +189,7 @@ class LayerCorrection {
   std::shared_ptr<const CellQuadratureGeometry> cell_;
   LayerKernel kernel_;
   std::vector<QuadratureTarget> targets_;
-  double fold_radius_;
+  NodeShares shares_;
   std::shared_ptr<const PatchStencils> stencils_;
   // Per target t, entries [offsets[t], offsets[t + 1]) of each array (one allocation each
   // rather than one per target).

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <initializer_list>
 #include <numbers>
 #include <utility>
@@ -194,30 +195,38 @@ std::vector<QuadratureTarget> off_surface_targets(const SHSurface& s, double off
   return near;
 }
 
+// The chooser's single- and double-layer parameters for the cell's nodes in `box`.
+std::array<EwaldParameters, 2> chosen(const CellQuadratureGeometry& cell, const PeriodicBox& box, double tolerance) {
+  const int n = cell.nodes().size();
+  return {choose_ewald_parameters(EwaldKernel::stokeslet, tolerance, box, n).parameters,
+          choose_ewald_parameters(EwaldKernel::stresslet, tolerance, box, n).parameters};
+}
+
 // Single and double layers of `cell` in `box` at its nodes and at `near` points (targets with
-// their projections), SPME + real-space sums + corrections (Ewald tolerance 1e-8). fold: the
-// corrections leave their patch nodes within the real-space cutoff to the real-space sums
-// (PairShares); `folded` counts those (target, node) entries.
+// their projections), SPME + real-space sums + corrections at the Ewald tolerance given. fold:
+// the corrections leave their patch nodes within the real-space cutoff to the real-space sums
+// (PairShares); `folded` counts those (target, node) entries. reach: they remove no share of
+// the nodes beyond the cutoff (as CellLayers builds them).
 std::pair<Eigen::MatrixXd, Eigen::MatrixXd> periodic_layers(const std::shared_ptr<const CellQuadratureGeometry>& cell,
                                                             const PeriodicBox& box,
-                                                            const std::vector<QuadratureTarget>& near, bool fold,
-                                                            std::size_t& folded) {
+                                                            const std::vector<QuadratureTarget>& near,
+                                                            const std::array<EwaldParameters, 2>& parameters,
+                                                            bool fold, bool reach, std::size_t& folded) {
   const SourceNodes& nodes = cell->nodes();
   const int n = nodes.size(), k = static_cast<int>(near.size());
   PointField targets(n + k, 3);
   targets.topRows(n) = nodes.x;
   for (int i = 0; i < k; ++i) targets.row(n + i) = near[i].x.transpose();
   std::shared_ptr<const SpmeGrid> grid[2];
-  std::array<double, 2> radius{0.0, 0.0};
+  std::array<NodeShares, 2> node_shares{};
   for (int l = 0; l < 2; ++l) {
-    const EwaldChoice c =
-        choose_ewald_parameters(l == 0 ? EwaldKernel::stokeslet : EwaldKernel::stresslet, 1e-8, box, n);
-    grid[l] = std::make_shared<const SpmeGrid>(box, c.parameters, FftPlanning::estimate);
-    if (fold) radius[l] = pair_share_radius(box, c.parameters.cutoff);
+    grid[l] = std::make_shared<const SpmeGrid>(box, parameters[l], FftPlanning::estimate);
+    if (fold) node_shares[l].fold = pair_share_radius(box, parameters[l].cutoff);
+    if (reach) node_shares[l].reach = parameters[l].cutoff;
   }
   const double xi_s = grid[0]->parameters().xi, xi_d = grid[1]->parameters().xi;
-  auto self = LayerCorrection::single_and_double(cell, xi_s, xi_d, cell->node_targets(), radius);
-  auto close = LayerCorrection::single_and_double(cell, xi_s, xi_d, near, radius);
+  auto self = LayerCorrection::single_and_double(cell, xi_s, xi_d, cell->node_targets(), node_shares);
+  auto close = LayerCorrection::single_and_double(cell, xi_s, xi_d, near, node_shares);
   folded = 0;
   auto shares = [&](const LayerCorrection& s, const LayerCorrection& c) {
     // A segment per target pointing to the corrections' folded nodes, as CellLayers leaves them.
@@ -233,7 +242,14 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> periodic_layers(const std::shared_pt
   };
   EwaldPlan single(grid[0], nodes.x, targets, shares(*self.first, *close.first));
   EwaldPlan dbl(grid[1], nodes.x, targets, shares(*self.second, *close.second));
-  const Eigen::MatrixXd f = nodes.normal, u = nodes.x;
+  // A smooth force density (the normal's single layer cancels over the closed surface) and the
+  // position as the double layer's.
+  Eigen::MatrixXd f(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d x = nodes.x.row(i);
+    f.row(i) << std::sin(x.y()) + 0.3, x.x() * x.z(), std::cos(x.x() + 0.5 * x.y());
+  }
+  const Eigen::MatrixXd u = nodes.x;
   Eigen::MatrixXd sl = single.single_layer(f.array().colwise() * nodes.weight.array());
   Eigen::MatrixXd dl = dbl.double_layer(u.array().colwise() * nodes.weight.array(), nodes.normal);
   sl.topRows(n) += self.first->apply(f);
@@ -269,8 +285,8 @@ TEST(LayerCorrection, FoldedPatchNodesGiveTheSameLayers) {
       auto cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), CellGrids::make(N, N), options);
       const std::vector<QuadratureTarget> near = off_surface_targets(s, 0.1, {{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}});
       std::size_t none = 0;
-      const auto [sl, dl] = periodic_layers(cell, box, near, false, none);
-      const auto [sl_folded, dl_folded] = periodic_layers(cell, box, near, true, folded_in[b]);
+      const auto [sl, dl] = periodic_layers(cell, box, near, chosen(*cell, box, 1e-8), false, true, none);
+      const auto [sl_folded, dl_folded] = periodic_layers(cell, box, near, chosen(*cell, box, 1e-8), true, true, folded_in[b]);
       EXPECT_EQ(none, 0u);
       std::printf("  %s tables, box %.1f x %.1f x %.1f: %zu folded patch nodes, differences %.1e (single), %.1e (double)\n",
                   compact ? "compact" : "double", side.x(), side.y(), side.z(), folded_in[b],
@@ -282,6 +298,56 @@ TEST(LayerCorrection, FoldedPatchNodesGiveTheSameLayers) {
     EXPECT_GT(folded_in[1], 0u);
     EXPECT_LT(folded_in[1], folded_in[0]);  // the small box keeps part of the patches in the corrections
   }
+}
+
+// The real-space sums hold no pair beyond their cutoff, so the corrections remove no share
+// there (NodeShares::reach): a red cell at N = 16 in a box of side 4, the chooser's parameters
+// at the runs' tolerance (1e-6: cutoffs 1.59 and 1.81, where the 1,000-cell tube's are 1.26
+// and 1.53; the patches, rho_1 = pi / 2 on the parameter sphere, reach farther), against the
+// same xi and grids with every patch inside a cutoff of 3.5. Removing the shares beyond the cutoff would add -eta K w of a kernel the
+// truncation drops, so the layers without them are no farther from the reference than with
+// them; both are within the tolerance. With the fold radius at the cutoff, the double layer
+// keeps no node entries at all.
+TEST(LayerCorrection, PatchNodesBeyondTheCutoffHaveNoShare) {
+  const int N = 16;
+  const PeriodicBox box(Eigen::Vector3d(4.0, 4.0, 4.0));
+  SHSurface s = make_biconcave(N);
+  s.translate(Eigen::Vector3d(2.0, 2.0, 2.0));
+  auto cell = std::make_shared<const CellQuadratureGeometry>(s.coeffs(), CellGrids::make(N, N));
+  const std::vector<QuadratureTarget> near = off_surface_targets(s, 0.05, {{1.3, 0.3}, {1.57, 2.0}, {0.4, 4.4}, {2.9, 1.0}});
+  const std::array<EwaldParameters, 2> p = chosen(*cell, box, 1e-6);
+  std::array<EwaldParameters, 2> wide = p;
+  for (EwaldParameters& w : wide) w.cutoff = 3.5;
+  std::size_t folded = 0;
+  const auto [sl_ref, dl_ref] = periodic_layers(cell, box, near, wide, true, true, folded);
+  double error[2][2];  // [without, with the reach][single, double]
+  for (const bool reach : {false, true}) {
+    const auto [sl, dl] = periodic_layers(cell, box, near, p, true, reach, folded);
+    error[reach][0] = (sl - sl_ref).norm() / sl_ref.norm();
+    error[reach][1] = (dl - dl_ref).norm() / dl_ref.norm();
+    std::printf("  cutoffs %.3f, %.3f, %s shares beyond them: errors %.2e (single), %.2e (double)\n", p[0].cutoff,
+                p[1].cutoff, reach ? "no" : "with", error[reach][0], error[reach][1]);
+  }
+  for (int l = 0; l < 2; ++l) {
+    EXPECT_LT(error[1][l], 1e-6);
+    EXPECT_LE(error[1][l], error[0][l] * (1 + 1e-3));
+  }
+  std::array<NodeShares, 2> at_cutoff;
+  for (int l = 0; l < 2; ++l) at_cutoff[l] = {pair_share_radius(box, p[l].cutoff), p[l].cutoff};
+  std::array<NodeShares, 2> kept_beyond = at_cutoff;
+  for (NodeShares& k : kept_beyond) k.reach = std::numeric_limits<double>::infinity();
+  const auto node_entry_bytes = [&](const std::array<NodeShares, 2>& shares) {
+    const auto both = LayerCorrection::single_and_double(cell, p[0].xi, p[1].xi, cell->node_targets(), shares);
+    MemoryReport report;
+    both.second->report_memory(report, "double");
+    for (const MemoryReport::Item& i : report.items())
+      if (i.name == "double: node entries") return i.bytes - (cell->nodes().size() + 1) * sizeof(std::int64_t);
+    return std::size_t{0};
+  };
+  const std::size_t beyond = node_entry_bytes(kept_beyond), none = node_entry_bytes(at_cutoff);
+  std::printf("  double layer's node entries: %zu bytes with the shares beyond the cutoff, %zu without\n", beyond, none);
+  EXPECT_GT(beyond, 0u);
+  EXPECT_EQ(none, 0u);
 }
 
 // The tables kept in single precision (QuadratureOptions::compact_tables, the default) against
