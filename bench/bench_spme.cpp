@@ -13,6 +13,9 @@
 // K x K x 2K grid, density components, 1 = measured; all OpenMP threads; plan_ms: the planning).
 //   build/bin/bench_spme --benchmark_filter=NeighborList      tube27's cell-cell lists (argument:
 // the cutoff in thousandths)
+//   build/bin/bench_spme --benchmark_filter=RealSpace         the real-space sums alone on tube27's
+// cells, every pair's kernel computed (as in products without kept coefficients); pair_ns: wall
+// time per listed pair (arguments: 0 single / 1 double layer, OpenMP threads)
 //   build/bin/bench_spme --benchmark_filter=Tube27Cells       the same products on tube27's
 // cells as the solver sees them: 27 red cells of data/cases/tube_27_cells.toml (seed 1), 512
 // nodes each, stored cell by cell, with their normals (argument: OpenMP threads). Clustered and
@@ -36,6 +39,8 @@
 #include "geometry/surface/reference_shapes.h"
 #include "geometry/vessel/vessel.h"
 #include "libsolver/spme/ewald_plan.h"
+#include "libsolver/spme/neighbor_list.h"
+#include "libsolver/spme/real_space_sum.h"
 
 using namespace rbcflow;
 
@@ -167,6 +172,31 @@ void BM_Tube27CellsDoubleLayer(benchmark::State& state) {
   run_product(state, EwaldKernel::stresslet, tube27_cells(), 0);
 }
 
+// The real-space sum of one layer on tube27's cells at the chooser's cutoff for tolerance 1e-6,
+// no pair coefficients kept: the cost of each product of a run whose lists are too long to keep
+// them (the 1,000 cells' double layer).
+void BM_Tube27CellsRealSpace(benchmark::State& state) {
+  const bool double_layer = state.range(0) == 1;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  const ProductPoints& points = tube27_cells();
+  const int n = static_cast<int>(points.x.rows());
+  const EwaldChoice choice =
+      choose_ewald_parameters(double_layer ? EwaldKernel::stresslet : EwaldKernel::stokeslet, 1e-6, points.box, n);
+  const NeighborList list(points.box, choice.parameters.cutoff, points.x, points.x);
+  const PointField f = random_field(n, 2, false);
+  for (auto _ : state) {
+    PointField u = double_layer ? real_space_double_layer(list, choice.parameters.xi, f, points.normals)
+                                : real_space_single_layer(list, choice.parameters.xi, f);
+    benchmark::DoNotOptimize(u.data());
+  }
+  state.counters["pairs"] = static_cast<double>(list.n_pairs());
+  state.counters["pair_ns"] = benchmark::Counter(static_cast<double>(list.n_pairs()) * 1e-9,
+                                                 benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+  omp_set_num_threads(threads);
+}
+
 // Forward transform of `components` interleaved grids and the backward transform of 3, as one
 // SPME product runs them; the first (planning) call is outside the timed loop.
 void BM_GridTransform(benchmark::State& state) {
@@ -251,6 +281,7 @@ BENCHMARK(BM_SingleLayer)->Apply(small_sizes);
 BENCHMARK(BM_DoubleLayer)->Apply(small_sizes);
 BENCHMARK(BM_Tube27CellsSingleLayer)->Arg(1)->Arg(2)->Repetitions(3)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Tube27CellsDoubleLayer)->Arg(1)->Arg(2)->Repetitions(3)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Tube27CellsRealSpace)->ArgsProduct({{0, 1}, {1, 2}})->Repetitions(3)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SingleLayerMillion)->Apply(million);
 BENCHMARK(BM_DoubleLayerMillion)->Apply(million);
 

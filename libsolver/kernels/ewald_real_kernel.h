@@ -1,6 +1,8 @@
 #pragma once
 // The real-space kernels S^R and T^R of ewald_kernels.h for one fixed xi, evaluated about twice
-// as fast for the real-space sums: erfc(x) = exp(-x^2) erfcx(x), the scaled complementary error
+// as fast for loops that take one pair at a time (the wall's assembled real space, the patch
+// kernels of the corrections; the real-space sums take theirs in packets, ewald_real_batch.h):
+// erfc(x) = exp(-x^2) erfcx(x), the scaled complementary error
 // function erfcx tabulated once as piecewise Chebyshev interpolants on [0, 8] (erfc to 1.2e-14
 // relative; std::erfc beyond), so a pair costs one sqrt, one exp and a short polynomial instead of
 // erfc and exp. Values agree with ewald_kernels.h to ~1e-14 relative.

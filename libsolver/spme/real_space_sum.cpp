@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "libsolver/common/memory_report.h"
-#include "libsolver/kernels/ewald_real_kernel.h"
+#include "libsolver/kernels/ewald_real_batch.h"
 
 namespace rbcflow {
 namespace {
@@ -79,10 +79,8 @@ class ShareLookup {
   void clear(int t, std::vector<double>& work) const {
     for_each_share(t, [&](int s, float) { work[rank_[s]] = 0.0; });
   }
-  // The weight of sorted source s at squared distance r2 (its other images keep weight 1).
-  double weight(int s, double r2, const std::vector<double>& work) const {
-    return r2 < nearest_image2_ ? 1.0 - work[s] : 1.0;
-  }
+  // Squared distances below which a pair is at its nearest image (its other images keep weight 1).
+  double nearest_image2() const { return nearest_image2_; }
 
  private:
   template <class F>
@@ -99,27 +97,91 @@ class ShareLookup {
 };
 
 
-// u.row(t) = sum over the pairs (i, s, r) of target t of term(i, s, r, weight), parallel over
-// the targets; weight(r2) is the pair's 1 - share (1 when the target shares no pair).
-template <class Term>
-PointField sum_over_pairs(const NeighborList& pairs, const ShareLookup& lookup, Term&& term) {
+// The pairs of one target, a chunk at a time: their separations, weights and sources' densities
+// in arrays, so that the kernels and terms of a chunk are evaluated together, 4 pairs an
+// instruction (ewald_real_batch.h). The pairs of a target have consecutive indices from `first`.
+struct PairChunk {
+  static constexpr int kSize = 64;
+  alignas(32) double x[kSize], y[kSize], z[kSize];
+  alignas(32) double a[kSize], b[kSize];  // the pair's two radial coefficients
+  alignas(32) double eta[kSize];          // its share (0 when the target shares no pair)
+  alignas(32) double density[6][kSize];   // its source's density components (f, or q and n)
+  std::int64_t first = 0;
+  int n = 0;
+};
+
+// u.row(t) = sum over the chunks of target t's pairs of flush(chunk, weighted), which returns
+// the chunk's sum (weighted: the target shares pairs, whose shares are in chunk.eta); parallel
+// over the targets. `densities`: `Width` numbers per sorted source (sorted_densities).
+template <int Width, class Flush>
+PointField sum_over_pairs(const NeighborList& pairs, const ShareLookup& lookup, const std::vector<double>& densities,
+                          Flush&& flush) {
   PointField u(pairs.n_targets(), 3);
 #pragma omp parallel
   {
     std::vector<double> work = lookup.work(pairs);
+    PairChunk chunk;
 #pragma omp for schedule(dynamic, 64)
     for (int k = 0; k < pairs.n_targets(); ++k) {
       const int t = pairs.target_order()[k];
       const bool weighted = lookup.scatter(t, work);
       Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      chunk.n = 0;
       pairs.for_each_pair(t, [&](std::int64_t i, int s, const Eigen::Vector3d& r) {
-        acc += term(i, s, r, [&](double r2) { return weighted ? lookup.weight(s, r2, work) : 1.0; });
+        if (chunk.n == 0) chunk.first = i;
+        const int j = chunk.n++;
+        chunk.x[j] = r.x();
+        chunk.y[j] = r.y();
+        chunk.z[j] = r.z();
+        const double* d = &densities[Width * static_cast<std::size_t>(s)];
+        for (int m = 0; m < Width; ++m) chunk.density[m][j] = d[m];
+        chunk.eta[j] = weighted ? work[s] : 0.0;
+        if (chunk.n == PairChunk::kSize) {
+          acc += flush(chunk, weighted);
+          chunk.n = 0;
+        }
       });
+      if (chunk.n > 0) acc += flush(chunk, weighted);
       if (weighted) lookup.clear(t, work);
       u.row(t) = acc.transpose();
     }
   }
   return u;
+}
+
+// The chunk's coefficients: computed by `compute(chunk)` and weighted (stored in `c` when it
+// is being filled), or read from the kept coefficients `c`.
+template <class Compute>
+void chunk_coefficients(PairChunk& chunk, bool weighted, double nearest_image2, double* c, bool compute_them,
+                        Compute&& compute) {
+  const int n = chunk.n;
+  if (!compute_them) {
+    const double* k = c + 2 * chunk.first;
+#pragma omp simd
+    for (int j = 0; j < n; ++j) {
+      chunk.a[j] = k[2 * j];
+      chunk.b[j] = k[2 * j + 1];
+    }
+    return;
+  }
+  compute(chunk);
+  if (weighted) {
+    // A pair is weighted at its nearest image only (PairShares).
+#pragma omp simd
+    for (int j = 0; j < n; ++j) {
+      const double r2 = chunk.x[j] * chunk.x[j] + chunk.y[j] * chunk.y[j] + chunk.z[j] * chunk.z[j];
+      const double w = r2 < nearest_image2 ? 1.0 - chunk.eta[j] : 1.0;
+      chunk.a[j] *= w;
+      chunk.b[j] *= w;
+    }
+  }
+  if (c) {
+    double* k = c + 2 * chunk.first;
+    for (int j = 0; j < n; ++j) {
+      k[2 * j] = chunk.a[j];
+      k[2 * j + 1] = chunk.b[j];
+    }
+  }
 }
 
 }  // namespace
@@ -160,29 +222,26 @@ PointField real_space_single_layer(const NeighborList& pairs, double xi, const P
                                    std::vector<double>* coefficients, const PairShares* shares) {
   check_rows(forces, pairs.n_sources(), "the force field");
   const std::vector<double> f = sorted_densities(pairs, {&forces});
-  const EwaldRealKernel kernel(xi);
   const bool fill = prepare(pairs, coefficients);
   double* c = coefficients ? coefficients->data() : nullptr;
   const bool compute = !c || fill;
   const ShareLookup lookup(pairs, compute ? shares : nullptr);
-  return sum_over_pairs(pairs, lookup, [&](std::int64_t i, int s, const Eigen::Vector3d& r, auto&& weight) {
-    const Eigen::Map<const Eigen::Vector3d> fs(&f[3 * static_cast<std::size_t>(s)]);
-    double a, b;  // S^R f = a f + b (r.f) r
-    if (!compute) {
-      a = c[2 * i];
-      b = c[2 * i + 1];
-    } else {
-      const double r2 = r.squaredNorm(), rn = std::sqrt(r2);
-      const StokesletSplitCoeffs k2 = kernel.stokeslet_coeffs(rn);
-      const double w = weight(r2);
-      a = w * k2.a;
-      b = w * k2.b / r2;
-      if (c) {
-        c[2 * i] = a;
-        c[2 * i + 1] = b;
-      }
+  return sum_over_pairs<3>(pairs, lookup, f, [&](PairChunk& chunk, bool weighted) {
+    chunk_coefficients(chunk, weighted, lookup.nearest_image2(), c, compute, [&](PairChunk& k) {
+      batch_stokeslet_coeffs(xi, k.x, k.y, k.z, k.n, k.a, k.b);
+    });
+    // S^R f = a f + b (r.f) r
+    const double *fx = chunk.density[0], *fy = chunk.density[1], *fz = chunk.density[2];
+    double ux = 0, uy = 0, uz = 0;
+#pragma omp simd reduction(+ : ux, uy, uz)
+    for (int j = 0; j < chunk.n; ++j) {
+      const double rx = chunk.x[j], ry = chunk.y[j], rz = chunk.z[j];
+      const double brf = chunk.b[j] * (rx * fx[j] + ry * fy[j] + rz * fz[j]), a = chunk.a[j];
+      ux += a * fx[j] + brf * rx;
+      uy += a * fy[j] + brf * ry;
+      uz += a * fz[j] + brf * rz;
     }
-    return Eigen::Vector3d(a * fs + (b * r.dot(fs)) * r);
+    return Eigen::Vector3d(ux, uy, uz);
   });
 }
 
@@ -192,31 +251,29 @@ PointField real_space_double_layer(const NeighborList& pairs, double xi, const P
   check_rows(q, pairs.n_sources(), "the double-layer density");
   check_rows(normals, pairs.n_sources(), "the normal field");
   const std::vector<double> qn = sorted_densities(pairs, {&q, &normals});
-  const EwaldRealKernel kernel(xi);
   const bool fill = prepare(pairs, coefficients);
   double* c = coefficients ? coefficients->data() : nullptr;
   const bool compute = !c || fill;
   const ShareLookup lookup(pairs, compute ? shares : nullptr);
-  return sum_over_pairs(pairs, lookup, [&](std::int64_t i, int s, const Eigen::Vector3d& r, auto&& weight) {
-    const Eigen::Map<const Eigen::Vector3d> qs(&qn[6 * static_cast<std::size_t>(s)]);
-    const Eigen::Map<const Eigen::Vector3d> ns(&qn[6 * static_cast<std::size_t>(s) + 3]);
-    double alpha, beta;
-    if (!compute) {
-      alpha = c[2 * i];
-      beta = c[2 * i + 1];
-    } else {
-      const double r2 = r.squaredNorm();
-      const StressletSplitCoeffs k2 = kernel.stresslet_coeffs(std::sqrt(r2));
-      const double w = weight(r2);
-      alpha = w * k2.alpha;
-      beta = w * k2.beta;
-      if (c) {
-        c[2 * i] = alpha;
-        c[2 * i + 1] = beta;
-      }
+  return sum_over_pairs<6>(pairs, lookup, qn, [&](PairChunk& chunk, bool weighted) {
+    chunk_coefficients(chunk, weighted, lookup.nearest_image2(), c, compute, [&](PairChunk& k) {
+      batch_stresslet_coeffs(xi, k.x, k.y, k.z, k.n, k.a, k.b);
+    });
+    // T^R q n = (alpha (r.q)(r.n) + beta q.n) r + beta ((r.n) q + (r.q) n)
+    const double *qx = chunk.density[0], *qy = chunk.density[1], *qz = chunk.density[2];
+    const double *nx = chunk.density[3], *ny = chunk.density[4], *nz = chunk.density[5];
+    double ux = 0, uy = 0, uz = 0;
+#pragma omp simd reduction(+ : ux, uy, uz)
+    for (int j = 0; j < chunk.n; ++j) {
+      const double rx = chunk.x[j], ry = chunk.y[j], rz = chunk.z[j];
+      const double rq = rx * qx[j] + ry * qy[j] + rz * qz[j], rn = rx * nx[j] + ry * ny[j] + rz * nz[j];
+      const double alpha = chunk.a[j], beta = chunk.b[j];
+      const double radial = alpha * rq * rn + beta * (qx[j] * nx[j] + qy[j] * ny[j] + qz[j] * nz[j]);
+      ux += radial * rx + beta * (rn * qx[j] + rq * nx[j]);
+      uy += radial * ry + beta * (rn * qy[j] + rq * ny[j]);
+      uz += radial * rz + beta * (rn * qz[j] + rq * nz[j]);
     }
-    const double rq = r.dot(qs), rn = r.dot(ns);
-    return Eigen::Vector3d((alpha * rq * rn + beta * qs.dot(ns)) * r + beta * (rn * qs + rq * ns));
+    return Eigen::Vector3d(ux, uy, uz);
   });
 }
 
