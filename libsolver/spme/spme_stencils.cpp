@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "bspline.h"
@@ -38,8 +39,18 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
     }
   }
 
-  // The points that touch this rank's planes (all of them on an undivided grid), sorted by
-  // first grid index (slab-major), so that each slab is a contiguous range.
+  // An even number of slabs, each at least p - 1 planes wide (one slab if K_0 < 2 (p - 1)):
+  // spreading runs the slabs of one colour (even or odd) in parallel.
+  const int n_slabs = std::max(1, 2 * (K_[0] / (2 * (p_ - 1))));
+  const auto slab_plane = [&](int s) { return static_cast<int>(static_cast<std::int64_t>(s) * K_[0] / n_slabs); };
+  std::vector<int> slab_of_plane(K_[0]);
+  for (int s = 0; s < n_slabs; ++s)
+    for (int plane = slab_plane(s); plane < slab_plane(s + 1); ++plane) slab_of_plane[plane] = s;
+
+  // The points that touch this rank's planes (all of them on an undivided grid), slab by slab so
+  // that each slab is a contiguous range, and within a slab by tiles of kTile x kTile stencil
+  // origins across the other two directions: consecutive points then share most of their
+  // stencils' grid rows, which stay in cache.
   const auto touches_planes = [&](int i) {
     for (int a = 0; a < p_; ++a)
       if (plane_row((first[3 * static_cast<std::size_t>(i)] + a) % K_[0], 0) >= 0) return true;
@@ -48,9 +59,11 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
   for (int i = 0; i < n; ++i)
     if (touches_planes(i)) order_.push_back(i);
   const int kept = size();
+  constexpr int kTile = 16;
   const auto key = [&](int i) {
     const int* f = &first[3 * static_cast<std::size_t>(i)];
-    return (static_cast<std::int64_t>(f[0]) * K_[1] + f[1]) * K_[2] + f[2];
+    const int tile = (f[1] / kTile) * ((K_[2] + kTile - 1) / kTile) + f[2] / kTile;
+    return std::tuple(slab_of_plane[f[0]], tile, (static_cast<std::int64_t>(f[0]) * K_[1] + f[1]) * K_[2] + f[2]);
   };
   std::sort(order_.begin(), order_.end(), [&](int a, int b) { return key(a) < key(b); });
   first_.resize(3 * static_cast<std::size_t>(kept));
@@ -61,15 +74,11 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
     std::copy_n(&weights[3 * p_ * from], 3 * p_, &weights_[3 * static_cast<std::size_t>(p_) * i]);
   }
 
-  // An even number of slabs, each at least p - 1 planes wide (one slab if K_0 < 2 (p - 1)).
-  const int n_slabs = std::max(1, 2 * (K_[0] / (2 * (p_ - 1))));
   slab_begin_.resize(n_slabs + 1);
   for (int s = 0; s <= n_slabs; ++s) {
-    const int plane = static_cast<int>(static_cast<std::int64_t>(s) * K_[0] / n_slabs);
     slab_begin_[s] = static_cast<int>(
-        std::partition_point(
-            order_.begin(), order_.end(),
-            [&](int i) { return first[3 * static_cast<std::size_t>(i)] < plane; }) -
+        std::partition_point(order_.begin(), order_.end(),
+                             [&](int i) { return slab_of_plane[first[3 * static_cast<std::size_t>(i)]] < s; }) -
         order_.begin());
   }
 }
