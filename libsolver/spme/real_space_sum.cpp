@@ -11,6 +11,10 @@
 namespace rbcflow {
 namespace {
 
+void check_xi(double xi) {
+  if (!(xi > 0.0)) throw std::invalid_argument("real-space Ewald sum: xi must be positive, got " + std::to_string(xi));
+}
+
 void check_rows(const PointField& field, int n, const char* what) {
   if (field.rows() != n)
     throw std::invalid_argument(std::string("real-space Ewald sum: ") + what + " has " +
@@ -220,6 +224,7 @@ double pair_share_radius(const PeriodicBox& box, double cutoff) {
 
 PointField real_space_single_layer(const NeighborList& pairs, double xi, const PointField& forces,
                                    std::vector<double>* coefficients, const PairShares* shares) {
+  check_xi(xi);
   check_rows(forces, pairs.n_sources(), "the force field");
   const std::vector<double> f = sorted_densities(pairs, {&forces});
   const bool fill = prepare(pairs, coefficients);
@@ -248,6 +253,7 @@ PointField real_space_single_layer(const NeighborList& pairs, double xi, const P
 PointField real_space_double_layer(const NeighborList& pairs, double xi, const PointField& q,
                                    const PointField& normals, std::vector<double>* coefficients,
                                    const PairShares* shares) {
+  check_xi(xi);
   check_rows(q, pairs.n_sources(), "the double-layer density");
   check_rows(normals, pairs.n_sources(), "the normal field");
   const std::vector<double> qn = sorted_densities(pairs, {&q, &normals});

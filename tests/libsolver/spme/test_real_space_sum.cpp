@@ -165,3 +165,12 @@ TEST(RealSpaceSum, RejectsMismatchedDensities) {
   EXPECT_THROW(real_space_double_layer(pairs, 5.0, random_vectors(10, 1), random_vectors(8, 2)),
                std::invalid_argument);
 }
+
+TEST(RealSpaceSum, RejectsANonPositiveSplittingParameter) {
+  const PeriodicBox box(Eigen::Vector3d::Ones());
+  const PointField x = random_points(10, Eigen::Vector3d::Ones(), 1);
+  const NeighborList pairs(box, 0.3, x, x);
+  EXPECT_THROW(real_space_single_layer(pairs, 0.0, random_vectors(10, 1)), std::invalid_argument);
+  EXPECT_THROW(real_space_double_layer(pairs, -1.0, random_vectors(10, 1), random_vectors(10, 2)),
+               std::invalid_argument);
+}
