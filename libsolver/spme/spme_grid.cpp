@@ -18,21 +18,6 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// Plans the in-place transform of C interleaved grids (padded real rows, FFTW's r2c layout) on
-// `data` (planning overwrites it), or on an array of its own when `data` is null; the caller
-// holds fftw_planner_mutex().
-fftw_plan plan_in_place(const std::array<int, 3>& n, int C, bool forward, unsigned flags, fftw_complex* data) {
-  const int dims[3] = {n[0], n[1], n[2]};
-  const int real_rows[3] = {n[0], n[1], 2 * (n[2] / 2 + 1)};
-  const int complex_rows[3] = {n[0], n[1], n[2] / 2 + 1};
-  FftwBuffer<fftw_complex> own(data ? 0 : static_cast<std::size_t>(n[0]) * n[1] * (n[2] / 2 + 1) * C);
-  if (!data) data = own.data();
-  double* real = reinterpret_cast<double*>(data);
-  return forward ? fftw_plan_many_dft_r2c(3, dims, C, real, real_rows, C, 1, data, complex_rows, C, 1, flags)
-                 : fftw_plan_many_dft_c2r(3, dims, C, data, complex_rows, C, 1, real, real_rows, C, 1, flags);
-  // nullptr if FFTW cannot plan it
-}
-
 void check_components(int components, const char* where) {
   if (components != 3 && components != 1)
     throw std::invalid_argument(std::string(where) + ": 3 or 1 interleaved grids, not " + std::to_string(components));
@@ -46,8 +31,7 @@ SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, Ff
   validate(parameters, box);
   const std::array<int, 3>& K = parameters.grid;
   flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  threads_ = omp_get_max_threads();
-  if (ranks.size() > 1 && SlabFft::available()) slab_ = std::make_unique<SlabFft>(ranks, K, flags_, threads_);
+  if (ranks.size() > 1 && SlabFft::available()) slab_ = std::make_unique<SlabFft>(ranks, K, flags_, omp_get_max_threads());
 
   // Wavenumbers and B-spline moduli per direction; the Nyquist index gets k = 0 and is dropped.
   std::vector<double> modulus[3];
@@ -92,23 +76,15 @@ void SpmeGrid::for_each_wavevector(F&& f) const {
     }
 }
 
-SpmeGrid::~SpmeGrid() {
-  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  for (const LazyPlan* p : {&forward3_, &forward1_, &backward3_})
-    if (p->plan) fftw_destroy_plan(p->plan);
-}
+SpmeGrid::~SpmeGrid() = default;
 
-fftw_plan SpmeGrid::plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const {
+const GridTransform& SpmeGrid::plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const {
   std::call_once(p.made, [&] {
+    FftwBuffer<fftw_complex> own(on ? 0 : components * complex_points());
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    static const bool threads_ready = fftw_init_threads() != 0;
-    if (threads_ready) fftw_plan_with_nthreads(threads_);
-    const fftw_plan made = plan_in_place(parameters_.grid, components, forward, flags_, on);
-    if (threads_ready) fftw_plan_with_nthreads(1);  // other modules plan single-threaded FFTs
-    if (!made) throw std::runtime_error("SPME: FFTW could not plan the grid transform");
-    p.plan = made;
+    p.transform = std::make_unique<GridTransform>(parameters_.grid, components, forward, flags_, on ? on : own.data());
   });
-  return p.plan;
+  return *p.transform;
 }
 
 std::size_t SpmeGrid::real_points() const {
@@ -139,12 +115,12 @@ WorkArray SpmeGrid::work_array(int components) const {
 void SpmeGrid::forward(fftw_complex* data, int components) const {
   check_components(components, "SpmeGrid::forward");
   if (slab_) return slab_->forward(data, components);
-  fftw_execute_dft_r2c(plan(components == 3 ? forward3_ : forward1_, components, true, nullptr), real_part(data), data);
+  plan(components == 3 ? forward3_ : forward1_, components, true, nullptr).execute(data);
 }
 
 void SpmeGrid::backward(fftw_complex* data) const {
   if (slab_) return slab_->backward(data);
-  fftw_execute_dft_c2r(plan(backward3_, 3, false, nullptr), data, real_part(data));
+  plan(backward3_, 3, false, nullptr).execute(data);
 }
 
 void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "ewald_parameters.h"
+#include "grid_transform.h"
 #include "geometry/sph/fftw_util.h"
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/parallel/communicator.h"
@@ -39,8 +40,9 @@
 namespace rbcflow {
 
 // FFTW_ESTIMATE: planned in microseconds, the same plan in every run. FFTW_MEASURE: planned by timing
-// candidates (seconds for a 10^6-point grid), 1.2-1.9x faster transforms (docs/performance.md),
-// a plan that may differ from run to run and with it the last bits of the results.
+// candidates (a fraction of a second for the pieces of a 10^6-point grid, grid_transform.h),
+// 1.2-1.9x faster transforms (docs/performance.md), a plan that may differ from run to run and
+// with it the last bits of the results.
 enum class FftPlanning { estimate, measure };
 
 class SpmeGrid {
@@ -115,17 +117,17 @@ class SpmeGrid {
   }
   struct LazyPlan {
     std::once_flag made;
-    fftw_plan plan = nullptr;
+    std::unique_ptr<GridTransform> transform;
   };
-  // The plan, made on `on` (overwritten) or, when null, on an array of its own if not made yet.
-  fftw_plan plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const;
+  // The transform, planned on `on` (overwritten) or, when null, on an array of its own if not
+  // planned yet.
+  const GridTransform& plan(LazyPlan& p, int components, bool forward, fftw_complex* on) const;
   // Calls f(m, i, j, l) for every wavevector (i, j, l) of this rank's spectrum, m its index
   // there (spectra interleave their components: component c of m at C m + c); parallel.
   template <class F>
   void for_each_wavevector(F&& f) const;
 
   unsigned flags_;
-  int threads_;
   mutable LazyPlan forward3_, forward1_, backward3_;
   std::unique_ptr<SlabFft> slab_;  // distributed(): this rank's slab's transforms
   std::shared_ptr<WorkArrayPool> work_arrays_;
