@@ -2,12 +2,12 @@
 // The in-place 3-D real transform of C interleaved grids of size K = (K1, K2, K3) in FFTW's r2c
 // layout (real rows padded to R = 2 (K3/2 + 1) values; value c of (i, j, l) at
 // ((i K2 + j) R + l) C + c), taken as FFTW does it but planned piece by piece:
-//   forward:  per plane i: the rows' r2c transforms along l, then c2c along j (the plane, K2 R C
-//             doubles, stays in cache); then c2c along i, in blocks of kColumnBlock neighbouring
-//             columns of the K2 (K3/2 + 1) C that the planes hold;
+//   forward:  per plane i: the rows' r2c transforms along l, then c2c along j (one plane after
+//             the other, each while it is in cache); then c2c along i, in blocks of kColumnBlock
+//             neighbouring columns of the K2 (K3/2 + 1) C that the planes hold;
 //   backward: the same in reverse order (c2c along i, then per plane c2c along j and c2r along l).
-// The plans are single-threaded plans of one plane and one block, executed on every plane and
-// block in an OpenMP loop (FFTW's new-array execution is thread-safe). FFTW_MEASURE plans these
+// The plans are single-threaded plans of one row, one plane and one block, executed on every
+// row, plane and block in OpenMP loops (FFTW's new-array execution is thread-safe). FFTW_MEASURE plans these
 // in under a second where it planned the whole 3-D transform in 20-50 s for the 162 x 162 x 1600
 // grid of the 1,000-cell tube, and the transforms run as fast (docs/performance.md, "FFT plans").
 #include <fftw3.h>
