@@ -9,6 +9,7 @@
 //   build/bin/bench_spme --benchmark_filter=Million           10^6 points (minutes, ~10 GB)
 // Arguments: points, OpenMP threads.
 //   build/bin/bench_spme --benchmark_filter=GridTransform     one grid's forward + backward
+//                                                            (GridTransformThousandCells: 1 GB)
 // transforms with FFTW_ESTIMATE and FFTW_MEASURE plans, on tube27's grids (arguments: K for a
 // K x K x 2K grid, density components, 1 = measured; all OpenMP threads; plan_ms: the planning).
 //   build/bin/bench_spme --benchmark_filter=NeighborList      tube27's cell-cell lists (argument:
@@ -26,6 +27,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -198,17 +200,17 @@ void BM_Tube27CellsRealSpace(benchmark::State& state) {
 }
 
 // Forward transform of `components` interleaved grids and the backward transform of 3, as one
-// SPME product runs them; the first (planning) call is outside the timed loop.
-void BM_GridTransform(benchmark::State& state) {
-  const int K = static_cast<int>(state.range(0)), components = static_cast<int>(state.range(1));
-  const PeriodicBox box(Eigen::Vector3d(1.0, 1.0, 2.0));
-  const EwaldParameters p{10.0, 0.5, {K, K, 2 * K}, 8};
+// SPME product runs them, on a grid of `size` in a box of the same proportions; the first
+// (planning) call is outside the timed loop.
+void grid_transform(benchmark::State& state, const std::array<int, 3>& size, int components, bool measure) {
+  const PeriodicBox box(Eigen::Vector3d(size[0], size[1], size[2]) / size[0]);
+  const EwaldParameters p{10.0, 0.5, size, 8};
   {
     // Each case plans from scratch: no wisdom from the repetitions before it.
     const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     fftw_forget_wisdom();
   }
-  const SpmeGrid grid(box, p, state.range(2) ? FftPlanning::measure : FftPlanning::estimate);
+  const SpmeGrid grid(box, p, measure ? FftPlanning::measure : FftPlanning::estimate);
   // One array per 3 components, transformed in place (SpmePlan's products).
   const int arrays = components / 3;
   std::vector<FftwBuffer<fftw_complex>> data;
@@ -235,6 +237,16 @@ void BM_GridTransform(benchmark::State& state) {
     benchmark::DoNotOptimize(data[0].data());
   }
 }
+
+// K x K x 2K grids: tube27's sizes.
+void BM_GridTransform(benchmark::State& state) {
+  const int K = static_cast<int>(state.range(0));
+  grid_transform(state, {K, K, 2 * K}, static_cast<int>(state.range(1)), state.range(2) != 0);
+}
+
+// The 162 x 162 x 1600 grid of the 1,000 cells' double layer (data/cases/tube_1000_cells.toml),
+// measured plans: their planning (plan_ms) is what the run pays once.
+void BM_GridTransformThousandCells(benchmark::State& state) { grid_transform(state, {162, 162, 1600}, 3, true); }
 
 void small_sizes(benchmark::internal::Benchmark* b) {
   for (int n : {10000, 100000})
@@ -291,5 +303,6 @@ BENCHMARK(BM_GridTransform)
     ->ReportAggregatesOnly(true)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_GridTransformThousandCells)->Iterations(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();
