@@ -21,6 +21,8 @@ struct SurfaceProjection {
 // Newton iterations from (theta0, phi0) (Gauss-Newton while the Hessian of the squared
 // distance is indefinite); updates move along the unit sphere of parameters
 // (directions, not (theta, phi) directly) so that nothing special happens near the poles.
+// A step is halved while it would take the foot point farther from x0, so the distance found
+// is never more than the seed's: on a folded surface a full step could land on another sheet.
 SurfaceProjection project_onto_surface(const SHCoeffs& x, const Eigen::Vector3d& x0, double theta0,
                                        double phi0, int max_iterations = 30);
 
