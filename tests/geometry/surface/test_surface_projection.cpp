@@ -66,7 +66,7 @@ TEST(SurfaceProjection, ConvergesInAFewNewtonIterations) {
 // within 0.06 of the surface along its normal (the collision band), seeded at the nearest grid
 // node and given the 6 iterations of collision removal: the foot point is never farther than
 // the seed (each step keeps the distance from growing), so the distance found is at most the
-// seed node's. Full steps gave distances up to 0.75 here, on either side of the surface.
+// seed node's. Full steps found distances up to 0.60 here, 0.48 beyond the seed node's.
 TEST(SurfaceProjection, NeverEndsFartherThanItsSeed) {
   const int N = 12;
   const SHSurface s = fold_into_parachute(make_biconcave(N), 0.6).surface;
