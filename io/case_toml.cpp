@@ -58,6 +58,7 @@ Range any_finite() { return {}; }
 Range closed(double lo, double hi) { return {lo, hi, false, false}; }
 Range open_closed(double lo, double hi) { return {lo, hi, true, false}; }
 Range open(double lo, double hi) { return {lo, hi, true, true}; }
+Range closed_open(double lo, double hi) { return {lo, hi, false, true}; }
 
 // Collects the lines of the keys read, for messages now and later (CaseSource).
 class Context {
@@ -350,7 +351,7 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
   const double length = d.box[v.axis];
   const double cross = std::min(d.box[(v.axis + 1) % 3], d.box[(v.axis + 2) % 3]);
   const std::vector<std::string> constriction_keys{"depth", "width"};
-  const std::vector<std::string> bifurcation_keys{"daughter_diameters", "angle_deg"};
+  const std::vector<std::string> bifurcation_keys{"daughter_diameters", "angle_deg", "fillet_radius"};
   const std::vector<std::string> file_keys{"path", "scale"};
 
   if (v.kind == VesselKind::file) {
@@ -412,6 +413,8 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
       }
     }
     v.angle_deg = t->real("angle_deg", 60.0, open(0, 180));
+    const double smaller = 0.5 * std::min(v.daughter_diameters[0], v.daughter_diameters[1]);
+    v.fillet_radius = t->real("fillet_radius", 0.0, closed_open(0, smaller));
     v.center = t->real("center", length / 2, open(0, length));
   }
   t->finish();

@@ -35,6 +35,7 @@ BifurcationSpec bifurcation_spec(const Case& c) {
   s.daughter_diameters = c.vessel->daughter_diameters;
   s.angle_deg = c.vessel->angle_deg;
   s.centre = c.vessel->center;
+  s.fillet_radius = c.vessel->fillet_radius;
   return s;
 }
 

@@ -38,12 +38,15 @@ VesselMesh constriction(const ConstrictionSpec& spec);
 // box length later (wrapped through the box): one period is a parent half and a two-daughter
 // loop half, so the wall closes through the box faces like the tube. Parent and daughters
 // meet in spheres of the parent's radius at the split and merge points; daughter diameters
-// must be below D. Layout in docs/walls.md.
+// must be below D. Layout in docs/walls.md. A fillet_radius > 0 rounds every edge where parent
+// and daughters meet (the flow divider's ridge and the creases around it) with OpenCASCADE's
+// fillet of that radius; 0 leaves them sharp.
 struct BifurcationSpec {
   TubeSpec tube;  // the parent
   std::array<double, 2> daughter_diameters{};
-  double angle_deg = 0.0;  // between the two daughters
-  double centre = 0.0;     // the split, along the axis from the box face
+  double angle_deg = 0.0;      // between the two daughters
+  double centre = 0.0;         // the split, along the axis from the box face
+  double fillet_radius = 0.0;  // below the smaller daughter's radius
 };
 VesselMesh bifurcation(const BifurcationSpec& spec);
 

@@ -177,6 +177,7 @@ TEST(Case, AlternativesAreRead) {
   const Case bif = parse_case(minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\n"), "b.toml");
   EXPECT_NEAR(bif.vessel->daughter_diameters[0], 4 / std::cbrt(2.0), 1e-15);  // Murray's law
   EXPECT_EQ(bif.vessel->angle_deg, 60.0);
+  EXPECT_EQ(bif.vessel->fillet_radius, 0.0);  // sharp junctions unless asked
 }
 
 TEST(Case, VesselFileIsRelativeToTheCaseFile) {
@@ -201,7 +202,7 @@ TEST(Case, WrittenCaseReadsBackEqual) {
       "background_flow = { kind = \"shear\", rate = 0.1 }\n[cells]\nshape = \"ellipsoid\"\n"
       "positions = [[0.1, 0.2, 0.3], [3, 0, 0]]\norientations = [[1, 1, 0], [0, 0, 1]]\n"
       "[cells.membrane]\nlaw = \"neo-hookean\"\n[time]\ndt = 0.001\n",
-      minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.5]\n"
+      minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.5]\nfillet_radius = 0.5\n"
               "[cells]\nhematocrit = 0.3\nnarrow_start = \"parachute\"\n[output]\nformats = []\nrender_view = \"end\"\n"),
       minimal("[vessel]\nkind = \"file\"\npath = \"wall.msh\"\nscale = 0.354\n[ewald]\ngrid = [8, 8, 8]\n"),
       "[domain]\nbox = [5, 5, 10]\ntube_velocity = 2.5\n[vessel]\nkind = \"constriction\"\ndiameter = 3.5\n"
@@ -290,6 +291,9 @@ TEST(Case, WrongTypesAreErrors) {
 }
 
 TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
+  EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"bifurcation\"\ndiameter = 4\ndaughter_diameters = [3, 2.4]\n"
+                             "fillet_radius = 1.2\n")),
+            "bad.toml:8: vessel.fillet_radius: 1.2 is out of range (allowed: 0 <= x < 1.2)");
   EXPECT_EQ(error_of(minimal("[cells]\norder = 3\n")),
             "bad.toml:5: cells.order: 3 is out of range (allowed: integers 4..128)");
   EXPECT_EQ(error_of(minimal("[cells]\norder = 129\n")),
@@ -354,6 +358,8 @@ TEST(Case, InconsistentKeysAreErrors) {
                        "orientations[0] is the zero vector"));
   EXPECT_TRUE(contains(error_of(minimal("[vessel]\nkind = \"constriction\"\ndiameter = 3\n")),
                        "depth and width are required"));
+  EXPECT_TRUE(contains(error_of(minimal("[vessel]\ndiameter = 3\nfillet_radius = 0.5\n")),
+                       "vessel.fillet_radius: applies only to kind = \"bifurcation\""));
   EXPECT_TRUE(contains(error_of(minimal("[time]\ndt = 0.1\ndt_safety = 0.5\n")), "applies only to dt = \"auto\""));
   EXPECT_TRUE(contains(error_of(minimal("[cells.membrane]\nlaw = \"neo-hookean\"\ndilatation_modulus = 1\n")),
                        "applies only to law"));
