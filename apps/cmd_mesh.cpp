@@ -66,8 +66,8 @@ int run_mesh(Args& args) {
               v.element_size);
   std::printf("mesh:    %d nodes, %d triangles (%.2f s)\n", wall.surface.num_points(), wall.surface.num_triangles(),
               seconds);
-  std::printf("quality: min angle %.1f deg, edges %.3g..%.3g, area %.4g, lumen volume %.4g\n", q.min_angle_deg,
-              q.min_edge, q.max_edge, q.area, volume);
+  std::printf("quality: min angle %.1f deg, edges %.3g..%.3g, largest fold %.1f deg, area %.4g, lumen volume %.4g\n",
+              q.min_angle_deg, q.min_edge, q.max_edge, q.max_fold_deg, q.area, volume);
   write_vessel(wall, msh.string());
   fs::path vtp = msh;
   vtp.replace_extension(".vtp");

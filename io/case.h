@@ -67,10 +67,10 @@ struct CaseVessel {
   // constriction: d(s) = diameter - depth exp(-width (s - center)^2), s along the axis.
   // bifurcation: the branching point is at s = center.
   double depth = 0, width = 0, center = 0;
-  // bifurcation: two daughters at +-angle_deg / 2 to the axis; the edges where parent and
-  // daughters meet rounded with radius fillet_radius (0: sharp).
+  // bifurcation: two daughters at +-angle_deg / 2 to the axis.
   std::array<double, 2> daughter_diameters{};
   double angle_deg = 0;
+  // bifurcation, network: the edges where vessels meet rounded with this radius (0: sharp).
   double fillet_radius = 0;
   // file: a gmsh .msh, .stl or .step surface (absolute path, resolved against the case file's
   // folder); its coordinates are multiplied by `scale`.

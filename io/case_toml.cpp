@@ -351,11 +351,12 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
   const double length = d.box[v.axis];
   const double cross = std::min(d.box[(v.axis + 1) % 3], d.box[(v.axis + 2) % 3]);
   const std::vector<std::string> constriction_keys{"depth", "width"};
-  const std::vector<std::string> bifurcation_keys{"daughter_diameters", "angle_deg", "fillet_radius"};
+  const std::vector<std::string> bifurcation_keys{"daughter_diameters", "angle_deg"};
   const std::vector<std::string> file_keys{"path", "scale"};
 
   if (v.kind == VesselKind::file) {
     t->reject({"diameter", "center"}, "kind = \"tube\", \"constriction\" or \"bifurcation\"");
+    t->reject({"fillet_radius"}, "kind = \"bifurcation\" or \"network\"");
     t->reject(constriction_keys, "kind = \"constriction\"");
     t->reject(bifurcation_keys, "kind = \"bifurcation\"");
     const auto p = t->optional_text("path");
@@ -380,6 +381,9 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
     t->reject(file_keys, "kind = \"file\"");
     v.segments = read_segments(*t);
     v.element_size = t->real("element_size", v.element_size, open_closed(0, cross / 2));
+    double narrowest = kInf;
+    for (const CaseSegment& g : v.segments) narrowest = std::min(narrowest, 0.5 * g.diameter);
+    v.fillet_radius = t->real("fillet_radius", 0.0, closed_open(0, narrowest));
     t->finish();
     return v;
   }
@@ -390,6 +394,7 @@ std::optional<CaseVessel> read_vessel(Table& top, const CaseDomain& d, const fs:
   if (!diameter) t->fail_table("diameter is required for kind = \"" + to_string(v.kind) + "\"");
   v.diameter = *diameter;
   v.element_size = t->real("element_size", v.element_size, open_closed(0, v.diameter / 2));
+  if (v.kind != VesselKind::bifurcation) t->reject({"fillet_radius"}, "kind = \"bifurcation\" or \"network\"");
   if (v.kind == VesselKind::tube) {
     t->reject({"center"}, "kind = \"constriction\" or \"bifurcation\"");
     t->reject(constriction_keys, "kind = \"constriction\"");

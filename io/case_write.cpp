@@ -108,6 +108,7 @@ void write_vessel(Writer& w, const CaseVessel& v) {
     w.key("diameter", v.diameter);
   }
   w.key("element_size", v.element_size);
+  if (v.fillet_radius > 0) w.key("fillet_radius", v.fillet_radius);
   if (v.kind == VesselKind::constriction) {
     w.key("depth", v.depth);
     w.key("width", v.width);
@@ -115,7 +116,6 @@ void write_vessel(Writer& w, const CaseVessel& v) {
   } else if (v.kind == VesselKind::bifurcation) {
     w.key("daughter_diameters", list({real(v.daughter_diameters[0]), real(v.daughter_diameters[1])}));
     w.key("angle_deg", v.angle_deg);
-    if (v.fillet_radius > 0) w.key("fillet_radius", v.fillet_radius);
     w.key("center", v.center);
   }
 }

@@ -45,6 +45,7 @@ NetworkSpec network_spec(const Case& c) {
   s.axis = c.vessel->axis;
   s.box = to_eigen(c.domain.box);
   s.element_size = c.vessel->element_size;
+  s.fillet_radius = c.vessel->fillet_radius;
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/vessel/crease_fillet.h"
 #include "geometry/vessel/vessel.h"
 #include "geometry/vessel/vessel_periodic.h"
 #include "geometry/format_number.h"
@@ -73,61 +74,6 @@ int daughter(const Eigen::Vector2d& c, double z_split, double z_merge, double al
   throw std::runtime_error("gmsh: the daughter pipe gave no volume");
 }
 
-// The largest angle between the normals of the two faces along a curve of the model (sampled
-// at a few points of it): 0 where the faces meet smoothly (a seam of a revolved or piped face),
-// the angle of the crease where two solids of the fuse meet.
-double crease_angle(int curve, const std::vector<int>& faces) {
-  std::vector<double> lo, hi;
-  gmsh::model::getParametrizationBounds(1, curve, lo, hi);
-  double largest = 0;
-  for (double f : {0.1, 0.3, 0.5, 0.7, 0.9}) {
-    std::vector<double> x;
-    gmsh::model::getValue(1, curve, {lo[0] + f * (hi[0] - lo[0])}, x);
-    Eigen::Vector3d n[2];
-    for (int k = 0; k < 2; ++k) {
-      std::vector<double> uv, nk;
-      gmsh::model::getParametrization(2, faces[k], x, uv);
-      gmsh::model::getNormal(faces[k], uv, nk);
-      n[k] = Eigen::Vector3d(nk[0], nk[1], nk[2]).normalized();
-    }
-    largest = std::max(largest, std::acos(std::clamp(std::abs(n[0].dot(n[1])), 0.0, 1.0)));
-  }
-  return largest;
-}
-
-// Rounds the creases of the fused lumen (every curve between two faces meeting at more than 5
-// degrees, but the end circles in the box faces z = 0 and z = length) with OpenCASCADE's fillet;
-// returns the new volume.
-std::pair<int, int> round_creases(std::pair<int, int> lumen, double radius, double length) {
-  namespace occ = gmsh::model::occ;
-  DimTags faces, curves;
-  gmsh::model::getBoundary({lumen}, faces, false, false, false);
-  gmsh::model::getBoundary(faces, curves, false, false, false);
-  std::vector<int> creases;
-  for (const auto& [dim, signed_tag] : curves) {
-    const int tag = std::abs(signed_tag);
-    if (std::find(creases.begin(), creases.end(), tag) != creases.end()) continue;
-    std::vector<int> adjacent, up, down;  // faces of the lumen on the curve (not leftover profiles)
-    gmsh::model::getAdjacencies(1, tag, adjacent, down);
-    for (int f : adjacent)
-      if (std::any_of(faces.begin(), faces.end(), [&](const auto& face) { return std::abs(face.second) == f; }))
-        up.push_back(f);
-    double xmin, ymin, zmin, xmax, ymax, zmax;
-    gmsh::model::getBoundingBox(1, tag, xmin, ymin, zmin, xmax, ymax, zmax);
-    // OpenCASCADE pads bounding boxes by its tolerance (1e-7).
-    const bool in_box_face = zmax < 1e-6 * length || zmin > (1 - 1e-6) * length;
-    if (up.size() == 2 && !in_box_face && crease_angle(tag, up) > 5 * std::numbers::pi / 180) creases.push_back(tag);
-  }
-  DimTags rounded;
-  occ::fillet({lumen.second}, creases, {radius}, rounded, true);
-  if (rounded.size() != 1 || rounded[0].first != 3)
-    throw std::runtime_error("gmsh (OpenCASCADE) could not round the bifurcation's " + std::to_string(creases.size()) +
-                             " junction edges with fillet_radius " + format_number(radius) +
-                             "; the radius must fit the junction: try a smaller or a slightly different one");
-  occ::synchronize();
-  return rounded[0];
-}
-
 VesselMesh build_bifurcation(const BifurcationSpec& spec, const BifurcationLayout& layout) {
   namespace occ = gmsh::model::occ;
   const TubeSpec& t = spec.tube;
@@ -147,7 +93,7 @@ VesselMesh build_bifurcation(const BifurcationSpec& spec, const BifurcationLayou
   if (fused.size() != 1 || fused[0].first != 3)
     throw std::runtime_error("gmsh: the parent and daughters did not fuse into one volume");
   occ::synchronize();
-  if (spec.fillet_radius > 0) fused = {round_creases(fused[0], spec.fillet_radius, length)};
+  if (spec.fillet_radius > 0) fused = {round_creases(fused[0], spec.fillet_radius, length, "the bifurcation")};
   DimTags faces;
   gmsh::model::getBoundary(fused, faces, false, false, false);
   keep_only_surfaces(without_end_caps(faces, length));

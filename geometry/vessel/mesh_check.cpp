@@ -32,14 +32,22 @@ void check_indices(const TriangleMesh& m) {
     }
 }
 
-// Directed edge uses: each undirected edge must appear once in each direction.
-void check_edges(const TriangleMesh& m) {
+Eigen::Vector3d unit_normal(const VesselMesh& wall, int t) {
+  const Eigen::Matrix3d v = triangle_vertices(wall, t);
+  return (v.col(1) - v.col(0)).cross(v.col(2) - v.col(0)).normalized();
+}
+
+// Directed edge uses: each undirected edge must appear once in each direction. Returns the
+// largest fold (degrees) between the two triangles of an edge.
+double check_edges(const VesselMesh& wall) {
+  const TriangleMesh& m = wall.surface;
   std::map<std::pair<int, int>, std::vector<int>> uses;  // (min, max) -> +-(t + 1)
   for (int t = 0; t < m.num_triangles(); ++t)
     for (int a = 0; a < 3; ++a) {
       const int i = m.triangles(t, a), j = m.triangles(t, (a + 1) % 3);
       uses[{std::min(i, j), std::max(i, j)}].push_back(i < j ? t + 1 : -(t + 1));
     }
+  double largest_fold = 0.0;
   for (const auto& [edge, ts] : uses) {
     const std::string name = edge_name(edge.first, edge.second);
     if (ts.size() == 1)
@@ -53,7 +61,10 @@ void check_edges(const TriangleMesh& m) {
                                std::to_string(std::abs(ts[0]) - 1) + " and " +
                                std::to_string(std::abs(ts[1]) - 1) + " traverse the edge " +
                                name + " in the same direction (a flipped triangle)");
+    const double cosine = unit_normal(wall, std::abs(ts[0]) - 1).dot(unit_normal(wall, std::abs(ts[1]) - 1));
+    largest_fold = std::max(largest_fold, std::acos(std::clamp(cosine, -1.0, 1.0)));
   }
+  return largest_fold * 180.0 / std::numbers::pi;
 }
 
 void check_duplicates(const VesselMesh& wall, double tolerance) {
@@ -103,7 +114,7 @@ MeshQuality check_mesh(const VesselMesh& wall) {
                                " is degenerate (zero area)");
     q.area += area;
   }
-  check_edges(m);
+  q.max_fold_deg = check_edges(wall);
   return q;
 }
 

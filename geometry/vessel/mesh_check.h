@@ -10,6 +10,9 @@ struct MeshQuality {
   double min_angle_deg = 0.0;  // smallest triangle angle
   double min_edge = 0.0, max_edge = 0.0;
   double area = 0.0;
+  // The largest angle between the normals of two triangles sharing an edge: ~h / R on a smooth
+  // wall of curvature radius R, the crease's angle where the surface has one.
+  double max_fold_deg = 0.0;
 };
 
 // Every edge must be shared by exactly two triangles, traversed in opposite directions (a closed

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/vessel/crease_fillet.h"
 #include "geometry/vessel/vessel_periodic.h"
 
 namespace rbcflow {
@@ -57,6 +58,7 @@ VesselMesh build_network(const NetworkSpec& spec, const NetworkLayout& layout) {
     throw std::runtime_error("gmsh: the network's segments did not fuse into one lumen (" +
                              std::to_string(cut.size()) + " pieces)");
   occ::synchronize();
+  if (spec.fillet_radius > 0) cut = {round_creases(cut[0], spec.fillet_radius, length, "the network")};
   DimTags faces;
   gmsh::model::getBoundary(cut, faces, false, false, false);
   keep_only_surfaces(without_end_caps(faces, length));

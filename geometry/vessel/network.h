@@ -22,6 +22,7 @@ struct NetworkSpec {
   int axis = 2;
   Eigen::Vector3d box = Eigen::Vector3d::Zero();
   double element_size = 0.0;
+  double fillet_radius = 0.0;  // rounds the creases at the junctions (0: sharp); below every segment's radius
 };
 
 // A point where segment ends meet. An end on the box face at the axis coordinate box[axis] is
@@ -52,7 +53,9 @@ NetworkLayout network_layout(const NetworkSpec& spec);
 // The lumen of the segments' cylinders fused with a sphere of the widest meeting radius at
 // every junction (each cylinder meets the sphere of its own radius tangentially, so a straight
 // run through a junction stays smooth), cut flat at the box faces along the axis, meshed with
-// triangles of the target size; the end curves periodic as for the tube. Throws as
+// triangles of the target size; the end curves periodic as for the tube. fillet_radius > 0
+// rounds the creases where segments meet the junction spheres and each other (crease_fillet.h)
+// before meshing. Throws as
 // network_layout does, and std::runtime_error when OpenCASCADE cannot fuse or mesh it.
 VesselMesh network(const NetworkSpec& spec);
 

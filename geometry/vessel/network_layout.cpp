@@ -62,6 +62,9 @@ struct Checker {
     if (!(s.diameter > 2 * spec.element_size))
       invalid(segment_name(i) + ": diameter " + format_number(s.diameter) + " must exceed twice the element size " +
               format_number(spec.element_size));
+    if (!(spec.fillet_radius < r))
+      invalid(segment_name(i) + ": fillet radius " + format_number(spec.fillet_radius) + " must be below its radius " +
+              format_number(r));
     if ((s.to - s.from).norm() <= tolerance) invalid(segment_name(i) + ": from and to are the same point");
     for (int side = 0; side < 2; ++side) {
       const Eigen::Vector3d& x = end(i, side);
@@ -201,6 +204,7 @@ NetworkLayout network_layout(const NetworkSpec& spec) {
   if (spec.axis < 0 || spec.axis > 2) invalid("axis must be 0, 1 or 2");
   if (!(spec.box.minCoeff() > 0)) invalid("box sides must be positive");
   if (!(spec.element_size > 0)) invalid("element size must be positive");
+  if (!(spec.fillet_radius >= 0)) invalid("fillet radius must not be negative");
   if (spec.segments.empty()) invalid("needs at least one segment");
   Checker c{spec, spec.box[spec.axis], 1e-6 * spec.box[spec.axis], {}};
   const int count = static_cast<int>(spec.segments.size());

@@ -359,7 +359,7 @@ TEST(Case, InconsistentKeysAreErrors) {
   EXPECT_TRUE(contains(error_of(minimal("[vessel]\nkind = \"constriction\"\ndiameter = 3\n")),
                        "depth and width are required"));
   EXPECT_TRUE(contains(error_of(minimal("[vessel]\ndiameter = 3\nfillet_radius = 0.5\n")),
-                       "vessel.fillet_radius: applies only to kind = \"bifurcation\""));
+                       "vessel.fillet_radius: applies only to kind = \"bifurcation\" or \"network\""));
   EXPECT_TRUE(contains(error_of(minimal("[time]\ndt = 0.1\ndt_safety = 0.5\n")), "applies only to dt = \"auto\""));
   EXPECT_TRUE(contains(error_of(minimal("[cells.membrane]\nlaw = \"neo-hookean\"\ndilatation_modulus = 1\n")),
                        "applies only to law"));
@@ -476,6 +476,9 @@ TEST(Case, NetworkSegmentsAreRead) {
   ASSERT_EQ(c.vessel->segments.size(), 2u);
   EXPECT_EQ(c.vessel->segments[1].from, (Vec3{5, 5, 5}));
   EXPECT_EQ(c.vessel->segments[1].diameter, 2.5);
+  EXPECT_EQ(parse_case(minimal(network + "fillet_radius = 0.5\n"), "net.toml").vessel->fillet_radius, 0.5);
+  EXPECT_EQ(error_of(minimal(network + "fillet_radius = 1.25\n")),
+            "bad.toml:10: vessel.fillet_radius: 1.25 is out of range (allowed: 0 <= x < 1.25)");
   EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"network\"\n")),
             "bad.toml:4: [vessel]: segments = [{ from = [x, y, z], to = [x, y, z], diameter = d }, ...] is required "
             "for kind = \"network\"");

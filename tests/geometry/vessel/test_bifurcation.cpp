@@ -4,12 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <numbers>
 #include <stdexcept>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "geometry/vessel/mesh_check.h"
 #include "geometry/vessel/mesh_orientation.h"
@@ -35,22 +31,6 @@ BifurcationSpec example(double h = 0.3) {
 
 double lateral_distance(const Eigen::Vector3d& x, const Eigen::Vector2d& axis) {
   return (x.head<2>() - axis).norm();
-}
-
-// The largest angle (degrees) between the normals of two triangles sharing an edge.
-double largest_dihedral_deg(const VesselMesh& wall) {
-  const auto& t = wall.surface.triangles;
-  std::map<std::pair<int, int>, std::vector<int>> sides;
-  for (int k = 0; k < t.rows(); ++k)
-    for (int e = 0; e < 3; ++e) sides[std::minmax(t(k, e), t(k, (e + 1) % 3))].push_back(k);
-  auto normal = [&](int k) {
-    const Eigen::Matrix3d v = triangle_vertices(wall, k);
-    return Eigen::Vector3d((v.col(1) - v.col(0)).cross(v.col(2) - v.col(0)).normalized());
-  };
-  double largest = 0;
-  for (const auto& [edge, two] : sides)
-    largest = std::max(largest, std::acos(std::clamp(normal(two[0]).dot(normal(two[1])), -1.0, 1.0)));
-  return largest * 180 / std::numbers::pi;
 }
 
 void expect_invalid(const BifurcationSpec& s, const std::string& words) {
@@ -128,10 +108,10 @@ TEST(Bifurcation, CentreShiftsTheWallThroughTheBox) {
 // the parallel part of the loop.
 TEST(Bifurcation, FilletRoundsTheJunctionCreases) {
   BifurcationSpec s = example();
-  const double sharp = largest_dihedral_deg(bifurcation(s));
+  const double sharp = check_mesh(bifurcation(s)).max_fold_deg;
   s.fillet_radius = 0.5;
   const VesselMesh rounded = bifurcation(s);
-  const double round = largest_dihedral_deg(rounded);
+  const double round = check_mesh(rounded).max_fold_deg;
   std::printf("largest fold between neighbouring triangles: sharp %.1f deg, fillet r = 0.5 %.1f deg\n", sharp, round);
   EXPECT_GT(sharp, 60.0);
   EXPECT_LT(round, 45.0);
