@@ -97,7 +97,7 @@ VesselMesh build_bifurcation(const BifurcationSpec& spec, const BifurcationLayou
   DimTags faces;
   gmsh::model::getBoundary(fused, faces, false, false, false);
   keep_only_surfaces(without_end_caps(faces, length));
-  return mesh_periodic_wall(t.axis, t.box, t.element_size, spec.centre - z_split);
+  return mesh_periodic_wall(t.axis, t.box, t.element_size, spec.centre - z_split, spec.fillet_radius > 0);
 }
 
 }  // namespace

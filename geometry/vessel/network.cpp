@@ -62,7 +62,7 @@ VesselMesh build_network(const NetworkSpec& spec, const NetworkLayout& layout) {
   DimTags faces;
   gmsh::model::getBoundary(cut, faces, false, false, false);
   keep_only_surfaces(without_end_caps(faces, length));
-  return mesh_periodic_wall(spec.axis, spec.box, spec.element_size);
+  return mesh_periodic_wall(spec.axis, spec.box, spec.element_size, 0.0, spec.fillet_radius > 0);
 }
 
 }  // namespace

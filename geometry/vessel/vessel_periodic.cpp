@@ -71,6 +71,37 @@ void set_periodic_ends(double length, double lateral) {
   }
 }
 
+// A CAD curve much shorter than the element size (where fillets meet) would be one edge of its
+// length between triangles of size h: slivers. Near such curves the mesh size falls to their
+// length (at least h / 10), growing back to h over 4 h (a gmsh Distance + Threshold field);
+// degenerate curves (a sphere's pole, no length) are left alone. Returns the smallest size.
+double size_short_curves(double element_size) {
+  std::vector<std::pair<int, int>> curves;
+  gmsh::model::getEntities(curves, 1);
+  double smallest = element_size;
+  std::vector<double> short_curves;
+  for (const auto& [dim, tag] : curves) {
+    double length = 0;
+    gmsh::model::occ::getMass(dim, tag, length);
+    if (!(length < 0.5 * element_size) || length < 1e-6 * element_size) continue;
+    short_curves.push_back(tag);
+    smallest = std::min(smallest, std::max(length, 0.1 * element_size));
+  }
+  if (short_curves.empty()) return element_size;
+  namespace field = gmsh::model::mesh::field;
+  const int distance = field::add("Distance");
+  field::setNumbers(distance, "CurvesList", short_curves);
+  field::setNumber(distance, "Sampling", 20);
+  const int threshold = field::add("Threshold");
+  field::setNumber(threshold, "InField", distance);
+  field::setNumber(threshold, "SizeMin", smallest);
+  field::setNumber(threshold, "SizeMax", element_size);
+  field::setNumber(threshold, "DistMin", smallest);
+  field::setNumber(threshold, "DistMax", 4 * element_size);
+  field::setAsBackgroundMesh(threshold);
+  return smallest;
+}
+
 }  // namespace
 
 void keep_only_surfaces(const std::vector<std::pair<int, int>>& surfaces) {
@@ -101,12 +132,13 @@ std::vector<std::pair<int, int>> without_end_caps(const std::vector<std::pair<in
   return wall;
 }
 
-VesselMesh mesh_periodic_wall(int axis, const Eigen::Vector3d& box, double element_size, double shift) {
+VesselMesh mesh_periodic_wall(int axis, const Eigen::Vector3d& box, double element_size, double shift,
+                              bool grade_short_curves) {
   const double length = box[axis];
   const double lateral = std::max(box[frame_axis(axis, 0)], box[frame_axis(axis, 1)]);
   gmsh::model::occ::synchronize();
   set_periodic_ends(length, lateral);
-  gmsh::option::setNumber("Mesh.MeshSizeMin", element_size);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", grade_short_curves ? size_short_curves(element_size) : element_size);
   gmsh::option::setNumber("Mesh.MeshSizeMax", element_size);
   gmsh::model::mesh::generate(2);
 

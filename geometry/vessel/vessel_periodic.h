@@ -48,7 +48,11 @@ std::vector<std::pair<int, int>> without_end_caps(const std::vector<std::pair<in
 // box[axis]: every curve in the plane z = 0 gets the curve above it in z = box[axis] as its
 // periodic copy (gmsh setPeriodic), so the nodes of the two ends match; those of the far end are
 // merged into the near ones. Then maps to box coordinates (z shifted by `shift` along the axis
-// and wrapped into the box), orients the normals into the lumen and checks the mesh.
-VesselMesh mesh_periodic_wall(int axis, const Eigen::Vector3d& box, double element_size, double shift = 0.0);
+// and wrapped into the box), orients the normals into the lumen and checks the mesh. With
+// grade_short_curves (a filleted model: where fillets meet, OpenCASCADE leaves curves far
+// shorter than the element size) the triangles shrink towards such curves instead of becoming
+// slivers beside them.
+VesselMesh mesh_periodic_wall(int axis, const Eigen::Vector3d& box, double element_size, double shift = 0.0,
+                              bool grade_short_curves = false);
 
 }  // namespace rbcflow

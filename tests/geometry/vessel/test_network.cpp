@@ -118,8 +118,11 @@ TEST(Network, FilletRoundsTheJunctionCreases) {
   const double sharp = check_mesh(network(s)).max_fold_deg;
   s.fillet_radius = 0.5;
   const VesselMesh rounded = network(s);
-  const double round = check_mesh(rounded).max_fold_deg;
-  std::printf("largest fold between neighbouring triangles: sharp %.1f deg, fillet r = 0.5 %.1f deg\n", sharp, round);
+  const MeshQuality q = check_mesh(rounded);
+  const double round = q.max_fold_deg;
+  std::printf("largest fold between neighbouring triangles: sharp %.1f deg, fillet r = 0.5 %.1f deg; %d nodes, "
+              "min angle %.1f deg, edges %.4f..%.3f\n",
+              sharp, round, rounded.surface.num_points(), q.min_angle_deg, q.min_edge, q.max_edge);
   EXPECT_LT(round, 45.0);
   EXPECT_LT(round, sharp - 5.0);
   EXPECT_LT(lumen_flux(rounded), 0.0);
