@@ -8,6 +8,7 @@
 #include <string>
 
 #include "geometry/vessel/mesh_check.h"
+#include "tests/geometry/vessel/fillet_folds.h"
 #include "geometry/vessel/mesh_orientation.h"
 #include "geometry/vessel/vessel.h"
 
@@ -108,16 +109,11 @@ TEST(Bifurcation, CentreShiftsTheWallThroughTheBox) {
 // the parallel part of the loop.
 TEST(Bifurcation, FilletRoundsTheJunctionCreases) {
   BifurcationSpec s = example();
-  const double sharp = check_mesh(bifurcation(s)).max_fold_deg;
   s.fillet_radius = 0.5;
-  const VesselMesh rounded = bifurcation(s);
-  const MeshQuality q = check_mesh(rounded);
-  const double round = q.max_fold_deg;
-  std::printf("largest fold between neighbouring triangles: sharp %.1f deg, fillet r = 0.5 %.1f deg; %d nodes, "
-              "min angle %.1f deg, edges %.4f..%.3f\n",
-              sharp, round, rounded.surface.num_points(), q.min_angle_deg, q.min_edge, q.max_edge);
-  EXPECT_GT(sharp, 60.0);
-  EXPECT_LT(round, 45.0);
+  const FilletFolds f = sharp_and_rounded(example(), s.fillet_radius, [](const BifurcationSpec& b) { return bifurcation(b); });
+  const VesselMesh& rounded = f.rounded;
+  EXPECT_GT(f.sharp_fold_deg, 60.0);
+  EXPECT_LT(f.quality.max_fold_deg, 45.0);
   EXPECT_LT(lumen_flux(rounded), 0.0);  // normals into the lumen
   const BifurcationLayout l = bifurcation_layout(s);
   const Eigen::Vector2d axis(6.0, 3.0);

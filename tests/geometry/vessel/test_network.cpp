@@ -10,6 +10,7 @@
 #include "geometry/vessel/mesh_check.h"
 #include "geometry/vessel/mesh_orientation.h"
 #include "geometry/vessel/network.h"
+#include "tests/geometry/vessel/fillet_folds.h"
 
 using namespace rbcflow;
 
@@ -115,16 +116,11 @@ TEST(Network, WallLiesOnTheCylindersAndSpheres) {
 // to where they part, (r_i + r_j) / (2 sin(theta / 2)) along them; the fillet reaches r beyond.
 TEST(Network, FilletRoundsTheJunctionCreases) {
   NetworkSpec s = loop_network();
-  const double sharp = check_mesh(network(s)).max_fold_deg;
   s.fillet_radius = 0.5;
-  const VesselMesh rounded = network(s);
-  const MeshQuality q = check_mesh(rounded);
-  const double round = q.max_fold_deg;
-  std::printf("largest fold between neighbouring triangles: sharp %.1f deg, fillet r = 0.5 %.1f deg; %d nodes, "
-              "min angle %.1f deg, edges %.4f..%.3f\n",
-              sharp, round, rounded.surface.num_points(), q.min_angle_deg, q.min_edge, q.max_edge);
-  EXPECT_LT(round, 45.0);
-  EXPECT_LT(round, sharp - 5.0);
+  const FilletFolds f = sharp_and_rounded(loop_network(), s.fillet_radius, [](const NetworkSpec& n) { return network(n); });
+  const VesselMesh& rounded = f.rounded;
+  EXPECT_LT(f.quality.max_fold_deg, 45.0);
+  EXPECT_LT(f.quality.max_fold_deg, f.sharp_fold_deg - 5.0);
   EXPECT_LT(lumen_flux(rounded), 0.0);
   const NetworkLayout l = network_layout(s);
   std::vector<double> crease_reach(l.nodes.size(), 0.0);
