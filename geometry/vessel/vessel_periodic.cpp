@@ -72,8 +72,9 @@ void set_periodic_ends(double length, double lateral) {
 }
 
 // A CAD curve much shorter than the element size (where fillets meet) would be one edge of its
-// length between triangles of size h: slivers. Near such curves the mesh size falls to their
-// length (at least h / 10), growing back to h over 4 h (a gmsh Distance + Threshold field);
+// length between triangles of size h: slivers. Near such curves the mesh size falls to the
+// shortest one's length (at least h / 10), growing back to h over 4 h (a gmsh Distance +
+// Threshold field);
 // degenerate curves (a sphere's pole, no length) are left alone. Returns the smallest size.
 double size_short_curves(double element_size) {
   std::vector<std::pair<int, int>> curves;
