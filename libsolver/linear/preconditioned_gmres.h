@@ -20,6 +20,15 @@
 
 namespace rbcflow {
 
+// The inner products of GMRES's vectors, whole on this process. A solve whose vectors are split
+// over ranks passes its own (SplitInnerProducts, parallel/owned_rows.h): the same three
+// operations, each summing the ranks' parts.
+struct LocalInnerProducts {
+  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const { return a.dot(b); }
+  double norm(const Eigen::VectorXd& a) const { return a.norm(); }
+  void sum(Eigen::VectorXd&) const {}  // of partial inner products (C^T r with C split by rows)
+};
+
 struct GmresReport {
   int iterations = 0;  // operator applications inside the Krylov cycles
   double relative_residual = 0.0;
@@ -64,13 +73,14 @@ struct RecycledSpace {
 // residual then takes instead of a product; on return, A x for the returned x, from the
 // Arnoldi relation (b less the residual the cycle leaves) where the solve ends in a cycle:
 // what a caller whose next guess is a combination of solutions needs, at no product.
-template <typename Operator, typename Preconditioner>
+// `products`: the inner products (above); the vectors may be this rank's rows only.
+template <typename Operator, typename Preconditioner, typename InnerProducts = LocalInnerProducts>
 GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eigen::VectorXd& b,
                                  Eigen::VectorXd& x, double tolerance, int max_iterations,
                                  int restart = 60, RecycledSpace* recycled = nullptr,
-                                 Eigen::VectorXd* image = nullptr) {
+                                 Eigen::VectorXd* image = nullptr, const InnerProducts& products = {}) {
   GmresReport report;
-  const double b_norm = b.norm();
+  const double b_norm = products.norm(b);
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
   if (b_norm == 0.0) {
     x.setZero();
@@ -82,7 +92,7 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
   while (true) {
     Eigen::VectorXd r = b - (image_known ? *image : Eigen::VectorXd(A(x)));
     image_known = false;  // a restart recomputes the residual
-    report.relative_residual = r.norm() / b_norm;
+    report.relative_residual = products.norm(r) / b_norm;
     if (report.relative_residual <= tolerance || report.iterations >= max_iterations) {
       report.converged = report.relative_residual <= tolerance;
       if (image) *image = b - r;
@@ -90,11 +100,12 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     }
     const int p = recycled ? recycled->size() : 0;
     if (p > 0) {  // the part of r in range(C), removed exactly
-      const Eigen::VectorXd c = recycled->C.transpose() * r;
+      Eigen::VectorXd c = recycled->C.transpose() * r;
+      products.sum(c);
       x += M_inv(Eigen::VectorXd(recycled->U * c));
       r -= recycled->C * c;
     }
-    const double beta = r.norm();
+    const double beta = products.norm(r);
     const int m = std::max(1, restart);
     std::vector<Eigen::VectorXd> V{r / beta};
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m), Hbar = H, B = Eigen::MatrixXd::Zero(p, m);
@@ -106,15 +117,16 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
       Eigen::VectorXd w = A(M_inv(V[k]));
       ++report.iterations;
       for (int pass = 0; pass < 2 && p > 0; ++pass) {  // twice: C is large, keep w orthogonal to it
-        const Eigen::VectorXd c = recycled->C.transpose() * w;
+        Eigen::VectorXd c = recycled->C.transpose() * w;
+        products.sum(c);
         B.col(k) += c;
         w -= recycled->C * c;
       }
       for (int j = 0; j <= k; ++j) {
-        H(j, k) = w.dot(V[j]);
+        H(j, k) = products.dot(w, V[j]);
         w -= H(j, k) * V[j];
       }
-      H(k + 1, k) = w.norm();
+      H(k + 1, k) = products.norm(w);
       Hbar.col(k) = H.col(k);
       for (int j = 0; j < k; ++j) {
         const double t = cs[j] * H(j, k) + sn[j] * H(j + 1, k);
@@ -156,11 +168,11 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
 }
 
 // Unpreconditioned (M = I): for operators as well conditioned as the cells' A11 of (10).
-template <typename Operator>
+template <typename Operator, typename InnerProducts = LocalInnerProducts>
 GmresReport gmres(Operator&& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance, int max_iterations,
-                  int restart = 60, Eigen::VectorXd* image = nullptr) {
+                  int restart = 60, Eigen::VectorXd* image = nullptr, const InnerProducts& products = {}) {
   return preconditioned_gmres(std::forward<Operator>(A), [](const Eigen::VectorXd& v) { return v; }, b, x, tolerance,
-                              max_iterations, restart, nullptr, image);
+                              max_iterations, restart, nullptr, image, products);
 }
 
 }  // namespace rbcflow

@@ -300,11 +300,15 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
-  if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
-  if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
-  Eigen::MatrixXd v = regular_double_layer(u) + apply_corrections(Layer::double_, u);
+  Eigen::MatrixXd v = double_layer_part(u);
   domain_.ranks.sum(v);
   return v;
+}
+
+Eigen::MatrixXd CellLayers::double_layer_part(const Eigen::MatrixXd& u) {
+  if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
+  if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
+  return regular_double_layer(u) + apply_corrections(Layer::double_, u);
 }
 
 void CellLayers::report_memory(MemoryReport& report) const {

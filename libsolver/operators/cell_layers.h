@@ -94,6 +94,10 @@ class CellLayers {
   // Throws std::logic_error for another density than the one given to the constructor, if one was.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
+  // This rank's part of double_layer(u), at every node: its cells' corrections and nodes as
+  // sources, its slab of the grid. double_layer(u) is the sum of the ranks' parts; a caller
+  // that needs only some rows of it sums the parts itself (parallel/owned_rows.h).
+  Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u);
 
  private:
   struct NearCorrection {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
+#include <vector>
 
 #ifdef RBCFLOW_HAVE_MPI
 #include <mpi.h>
@@ -58,6 +59,43 @@ long Communicator::sum(long value) const {
   long total = 0;
   MPI_Allreduce(&value, &total, 1, MPI_LONG, MPI_SUM, comm_of(handle_));
   return total;
+}
+
+namespace {
+
+// Checks the pieces' counts against the ranks and the lengths, and returns their offsets.
+std::vector<int> piece_offsets(std::span<const int> counts, int ranks, std::size_t total, std::size_t mine, int rank) {
+  if (static_cast<int>(counts.size()) != ranks) throw std::invalid_argument("Communicator: one piece count per rank");
+  std::vector<int> offsets(counts.size(), 0);
+  long sum = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = static_cast<int>(sum);
+    sum += counts[r];
+  }
+  if (sum != static_cast<long>(total) || static_cast<std::size_t>(counts[static_cast<std::size_t>(rank)]) != mine)
+    throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
+  return offsets;
+}
+
+}  // namespace
+
+void Communicator::sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int> counts) const {
+  piece_offsets(counts, size_, values.size(), mine.size(), rank_);
+  if (size_ == 1) {
+    std::copy(values.begin(), values.end(), mine.begin());
+    return;
+  }
+  MPI_Reduce_scatter(values.data(), mine.data(), counts.data(), MPI_DOUBLE, MPI_SUM, comm_of(handle_));
+}
+
+void Communicator::gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int> counts) const {
+  const std::vector<int> offsets = piece_offsets(counts, size_, all.size(), mine.size(), rank_);
+  if (size_ == 1) {
+    std::copy(mine.begin(), mine.end(), all.begin());
+    return;
+  }
+  MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                 MPI_DOUBLE, comm_of(handle_));
 }
 
 double Communicator::min(double value) const {
@@ -119,6 +157,14 @@ void MpiSession::abort_all(int status) {
 Communicator Communicator::world() { return {}; }
 void Communicator::sum(std::span<double>) const {}
 long Communicator::sum(long value) const { return value; }
+void Communicator::sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int>) const {
+  if (values.size() != mine.size()) throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
+  std::copy(values.begin(), values.end(), mine.begin());
+}
+void Communicator::gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int>) const {
+  if (all.size() != mine.size()) throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
+  std::copy(mine.begin(), mine.end(), all.begin());
+}
 double Communicator::min(double value) const { return value; }
 int Communicator::ranks_on_this_machine() const { return 1; }
 void Communicator::check_same(long, const std::string&) const {}

@@ -33,6 +33,13 @@ class Communicator {
     sum(std::span<double>(values.data(), static_cast<std::size_t>(values.size())));
   }
   long sum(long value) const;
+  // Element-wise sum over the ranks, rank r receiving only its piece: `values` (the same length
+  // on every rank) is cut into consecutive pieces of counts[0], counts[1], ... values, and
+  // `mine` (counts[rank()] values) gets this rank's piece of the sum (MPI_Reduce_scatter).
+  void sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int> counts) const;
+  // The ranks' pieces side by side in rank order, on every rank: `all` (the sum of counts
+  // values) gets counts[r] values from rank r, whose `mine` holds them (MPI_Allgatherv).
+  void gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int> counts) const;
   // The smallest of the ranks' values, the same on every rank.
   double min(double value) const;
   // How many of the ranks share this rank's machine (its node: MPI_COMM_TYPE_SHARED).

@@ -3,6 +3,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "libsolver/parallel/owned_rows.h"
+
 namespace rbcflow {
 
 VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& traction, double viscosity_ratio,
@@ -18,23 +20,29 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     if (image) *image = rhs;
     return s;
   }
-  const Eigen::Index n = rhs.rows();
+  // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product gathers the
+  // density from the ranks, and each rank receives only its rows of the sum of their parts.
+  const OwnedRows rows(layers.num_cells(), layers.nodes_per_cell(), layers.domain().ranks);
+  const Eigen::Index n = rows.rows();
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const Eigen::Map<const Eigen::MatrixXd> u(v.data(), n, 3);
-    const Eigen::MatrixXd Au = u - c * layers.double_layer(u);
+    const Eigen::MatrixXd Au = u - c * rows.sum_mine(layers.double_layer_part(rows.gather(u)));
     return Eigen::Map<const Eigen::VectorXd>(Au.data(), Au.size());
   };
-  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(rhs.data(), rhs.size());
-  Eigen::VectorXd x = initial_guess.size() == rhs.size()
-                          ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(initial_guess.data(), initial_guess.size()))
-                          : b;
+  auto mine = [&](const Eigen::MatrixXd& all) {
+    const Eigen::MatrixXd m = rows.mine(all);
+    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(m.data(), m.size()));
+  };
+  auto gathered = [&](const Eigen::VectorXd& v) { return rows.gather(Eigen::Map<const Eigen::MatrixXd>(v.data(), n, 3)); };
+  const Eigen::VectorXd b = mine(rhs);
+  const bool guessed = initial_guess.rows() == rhs.rows() && initial_guess.cols() == 3;
+  Eigen::VectorXd x = guessed ? mine(initial_guess) : b;
   Eigen::VectorXd Ax;
-  if (image && image->rows() == n && image->cols() == 3 && initial_guess.size() == rhs.size())
-    Ax = Eigen::Map<const Eigen::VectorXd>(image->data(), image->size());
-  s.gmres = gmres(A, b, x, tolerance, max_iterations, 60, image ? &Ax : nullptr);
-  s.velocity = Eigen::Map<const Eigen::MatrixXd>(x.data(), n, 3);
-  if (image) *image = Eigen::Map<const Eigen::MatrixXd>(Ax.data(), n, 3);
+  if (image && guessed && image->rows() == rhs.rows() && image->cols() == 3) Ax = mine(*image);
+  s.gmres = gmres(A, b, x, tolerance, max_iterations, 60, image ? &Ax : nullptr, SplitInnerProducts{layers.domain().ranks});
+  s.velocity = gathered(x);
+  if (image) *image = gathered(Ax);
   return s;
 }
 

@@ -2,7 +2,8 @@
 // under mpirun -np 2 and 3 (tests/libsolver/parallel/CMakeLists.txt), every product of CellLayers and
 // CellLayersAtPoints on the world's ranks equals the same product on one rank, computed on each
 // rank alone, to the rounding of a sum taken in another order; and it is the same on every rank.
-// The same for the SPME grid split in slabs over the ranks (spme/spme_grid.h).
+// The same for the SPME grid split in slabs over the ranks (spme/spme_grid.h), and for the solve
+// of (10) with GMRES's vectors split by rows (parallel/owned_rows.h).
 // Run on one process, the same tests compare one rank with itself (and pass trivially).
 #include <gtest/gtest.h>
 
@@ -16,7 +17,9 @@
 #include "libsolver/wall/wall_solver.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/cell_layers_at_points.h"
+#include "libsolver/parallel/owned_rows.h"
 #include "libsolver/spme/spme_plan.h"
+#include "libsolver/stepper/cell_velocity.h"
 
 using namespace rbcflow;
 
@@ -176,6 +179,59 @@ TEST(DistributedSpme, SlabPartsSumToTheWholeGrid) {
   EXPECT_LT(ds, 1e-13);
   EXPECT_LT(dd, 1e-13);
   EXPECT_LT(dself, 1e-13);
+}
+
+// Stacked node data split by the cells' owners: a sum reaches each rank as its rows, a gather
+// puts the rows back together. Values that are small integers: the sums are exact.
+TEST(OwnedRows, SumsAndGathersByTheOwnersRows) {
+  const Communicator world = Communicator::world();
+  const int p = world.size();
+  for (const int cells : {1, 2, 7}) {  // 1 cell: on two ranks, rank 1 holds no rows
+    const int np = 4;
+    const OwnedRows rows(cells, np, world);
+    const OwnedRange mine = owned_block(cells, world);
+    ASSERT_EQ(rows.rows(), mine.size() * np);
+    ASSERT_EQ(rows.total_rows(), cells * np);
+    Eigen::MatrixXd all(cells * np, 3);
+    for (Eigen::Index i = 0; i < all.size(); ++i) all.data()[i] = static_cast<double>(i % 97);
+    const Eigen::MatrixXd part = (world.rank() + 1) * all;  // the ranks' parts sum to p(p+1)/2 all
+    EXPECT_EQ(rows.sum_mine(part), (p * (p + 1) / 2) * all.middleRows(mine.begin * np, mine.size() * np));
+    EXPECT_EQ(rows.gather(rows.mine(all)), all);
+  }
+  EXPECT_THROW(OwnedRows(2, 4, world).gather(Eigen::MatrixXd::Zero(3, 3)), std::invalid_argument);
+}
+
+// The velocity of (10) solved with GMRES's vectors split by rows over the ranks (each rank its
+// cells' rows, inner products summed over the ranks): the same iterations as one rank, and the
+// same velocity to the rounding the products carry into the iterates, on every rank alike.
+TEST(DistributedLayers, CellVelocitySolveOnTheRanksEqualsOneRank) {
+  const Communicator world = Communicator::world();
+  const int N = 8;
+  const auto grids = CellGrids::make(N, 2 * N);
+  LayerDomain one{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+  LayerDomain shared = one;
+  shared.ranks = world;
+  CellLayers serial(three_cells(N), grids, one), distributed(three_cells(N), grids, shared);
+  const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
+  const Eigen::MatrixXd background = smooth_density(serial.nodes().x + serial.nodes().normal);
+  Eigen::MatrixXd image_one, image_ranks;
+  const VelocitySolve a = solve_cell_velocity(serial, f, 5.0, background, 1e-10, 100, {}, &image_one);
+  const VelocitySolve b = solve_cell_velocity(distributed, f, 5.0, background, 1e-10, 100, {}, &image_ranks);
+  ASSERT_TRUE(a.gmres.converged);
+  ASSERT_GT(a.gmres.iterations, 3);
+  EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
+  const double dv = relative(b.velocity, a.velocity), di = relative(image_ranks, image_one);
+  std::printf("  cell velocity: %d iterations, velocity %.1e, image %.1e from one rank's\n", a.gmres.iterations, dv, di);
+  // The products differ by ~1e-16 (above); GMRES at 1e-10 carries that, not more.
+  EXPECT_LT(dv, 1e-13);
+  EXPECT_LT(di, 1e-13);
+  EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
+  EXPECT_EQ(spread_over_ranks(world, image_ranks), 0.0);
+  // Restarted from its own solution and image: no product, the same velocity.
+  Eigen::MatrixXd image = image_ranks;
+  const VelocitySolve again = solve_cell_velocity(distributed, f, 5.0, background, 1e-10, 100, b.velocity, &image);
+  EXPECT_EQ(again.gmres.iterations, 0);
+  EXPECT_EQ(again.velocity, b.velocity);
 }
 
 // More ranks than cells: a rank that owns none takes part in every product with nothing.

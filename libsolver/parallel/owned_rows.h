@@ -1,0 +1,56 @@
+#pragma once
+// Stacked node data (rows of 3 values, cell by cell) split by the cells' owners
+// (ownership.h): rank r holds the rows of the cells it owns. The GMRES of (10) keeps its
+// vectors this way (stepper/cell_velocity.h): each rank only its cells' rows, so the Krylov
+// basis is split over the ranks, and a product's sum over the ranks reaches each rank only as
+// its rows (Communicator::sum_pieces) instead of whole on every rank.
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+#include "libsolver/parallel/ownership.h"
+
+namespace rbcflow {
+
+class OwnedRows {
+ public:
+  OwnedRows(int cells, int nodes_per_cell, const Communicator& ranks);
+
+  int rows() const { return mine_.size(); }  // this rank's
+  int total_rows() const { return total_; }
+  // This rank's rows of `all` (total_rows() x 3).
+  Eigen::MatrixXd mine(const Eigen::MatrixXd& all) const;
+  // The sum over the ranks of their `part`s (each total_rows() x 3), this rank's rows of it.
+  Eigen::MatrixXd sum_mine(const Eigen::MatrixXd& part) const;
+  // Every rank's rows (`mine` on each, rows() x 3) stacked in order, on every rank.
+  Eigen::MatrixXd gather(const Eigen::MatrixXd& mine) const;
+
+ private:
+  Communicator ranks_;
+  int total_ = 0;
+  OwnedRange mine_;                    // rows
+  std::vector<OwnedRange> blocks_;     // every rank's rows
+  std::vector<int> counts_;            // every rank's values: 3 per row
+};
+
+// GMRES's inner products (linear/preconditioned_gmres.h) of vectors split by rows over the
+// ranks: each the sum of the ranks' parts, formed by Communicator::sum, so that every rank
+// holds the same bits and takes the same iterations.
+struct SplitInnerProducts {
+  Communicator ranks;
+  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+    Eigen::VectorXd d(1);
+    d[0] = a.dot(b);
+    ranks.sum(d);
+    return d[0];
+  }
+  double norm(const Eigen::VectorXd& a) const {
+    Eigen::VectorXd s(1);
+    s[0] = a.squaredNorm();
+    ranks.sum(s);
+    return std::sqrt(s[0]);
+  }
+  void sum(Eigen::VectorXd& partial) const { ranks.sum(partial); }
+};
+
+}  // namespace rbcflow
