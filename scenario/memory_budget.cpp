@@ -95,8 +95,9 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
     }
   }
   if (wall_nodes > 0) {
-    const double recycled = 48.0 * s.options.wall_solve.recycle;
-    m.parts.push_back({"wall", (67.1e3 + recycled) * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
+    m.parts.push_back({"wall", 67.1e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
+    // U and C of the recycled Krylov space, each rank its segment of the nodes (wall_solver.h).
+    m.parts.push_back({"wall recycled space", 48.0 * s.options.wall_solve.recycle * wall_nodes, 1.0});
     if (cells > 0) {
       m.parts.push_back({"cells <-> wall", 17.0e3 * wall_nodes + 1.7e3 * cells * s.grids->n_grid->grid().size(),
                          kSplitCoupling});

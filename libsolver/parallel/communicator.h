@@ -1,9 +1,10 @@
 #pragma once
 // The ranks that share a run (`mpirun -np P rbcflow run CASE.toml`). The state of a run (the
-// cells' shapes, the wall force, every GMRES vector) is replicated on every rank; the work of
-// the cells' operators is split by the cells each rank owns (ownership.h), and each product is
-// summed over the ranks with sum(). Every rank then takes the same decisions (GMRES iterations,
-// collisions, output steps) from the same numbers.
+// cells' shapes, the wall force, the wall solve's GMRES vectors) is replicated on every rank;
+// the work of the cells' operators is split by the cells each rank owns (ownership.h), and each
+// product is summed over the ranks with sum(), or with sum_pieces() where each rank keeps only
+// its cells' rows (the GMRES of (10), owned_rows.h). Every rank then takes the same decisions
+// (GMRES iterations, collisions, output steps) from the same numbers.
 //
 // A Communicator that is not world() in an MPI launch is one rank: sum() does nothing, and
 // code written against it runs exactly as the serial build does. The serial build (no MPI

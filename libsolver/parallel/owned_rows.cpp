@@ -44,4 +44,30 @@ Eigen::MatrixXd OwnedRows::gather(const Eigen::MatrixXd& mine) const {
   return all;
 }
 
+OwnedSegments::OwnedSegments(int nodes, const Communicator& ranks)
+    : ranks_(ranks), total_(nodes), mine_(owned_block(nodes, ranks)) {
+  for (int r = 0; r < ranks.size(); ++r) counts_.push_back(3 * owned_block(nodes, r, ranks.size()).size());
+}
+
+Eigen::VectorXd OwnedSegments::mine(const Eigen::VectorXd& all) const {
+  if (all.size() != 3 * static_cast<Eigen::Index>(total_)) throw std::invalid_argument("OwnedSegments::mine: not a vector of every node");
+  return all.segment(3 * mine_.begin, 3 * mine_.size());
+}
+
+Eigen::VectorXd OwnedSegments::sum_mine(const Eigen::VectorXd& part) const {
+  if (part.size() != 3 * static_cast<Eigen::Index>(total_)) throw std::invalid_argument("OwnedSegments::sum_mine: not a vector of every node");
+  Eigen::VectorXd sum(3 * mine_.size());
+  ranks_.sum_pieces({part.data(), static_cast<std::size_t>(part.size())}, {sum.data(), static_cast<std::size_t>(sum.size())},
+                    counts_);
+  return sum;
+}
+
+Eigen::VectorXd OwnedSegments::gather(const Eigen::VectorXd& mine) const {
+  if (mine.size() != 3 * mine_.size()) throw std::invalid_argument("OwnedSegments::gather: not this rank's segment");
+  Eigen::VectorXd all(3 * static_cast<Eigen::Index>(total_));
+  ranks_.gather_pieces({mine.data(), static_cast<std::size_t>(mine.size())}, {all.data(), static_cast<std::size_t>(all.size())},
+                       counts_);
+  return all;
+}
+
 }  // namespace rbcflow

@@ -1,4 +1,6 @@
 #pragma once
+// Node data split over the ranks, for GMRES on vectors that each rank holds only a part of.
+//
 // Stacked node data (rows of 3 values, cell by cell) split by the cells' owners
 // (ownership.h): rank r holds the rows of the cells it owns. The GMRES of (10) keeps its
 // vectors this way (stepper/cell_velocity.h): each rank only its cells' rows, so the Krylov
@@ -31,6 +33,28 @@ class OwnedRows {
   OwnedRange mine_;                    // rows
   std::vector<OwnedRange> blocks_;     // every rank's rows
   std::vector<int> counts_;            // every rank's values: 3 per row
+};
+
+// Node vectors interleaved (x0 y0 z0 x1 ...: wall_elements.h's to_vector) split over the ranks
+// by blocks of the nodes (owned_block): the wall solve's GMRES vectors (wall/wall_solver.h),
+// each rank holding the nodes whose rows of the assembled operator it holds (wall_operator.h).
+class OwnedSegments {
+ public:
+  OwnedSegments(int nodes, const Communicator& ranks);
+
+  const OwnedRange& nodes() const { return mine_; }  // this rank's
+  // This rank's segment of `all` (3 values a node, every node).
+  Eigen::VectorXd mine(const Eigen::VectorXd& all) const;
+  // The sum over the ranks of their `part`s (every node each), this rank's segment of it.
+  Eigen::VectorXd sum_mine(const Eigen::VectorXd& part) const;
+  // Every rank's segment (`mine` on each) in order, on every rank.
+  Eigen::VectorXd gather(const Eigen::VectorXd& mine) const;
+
+ private:
+  Communicator ranks_;
+  int total_ = 0;              // nodes
+  OwnedRange mine_;            // nodes
+  std::vector<int> counts_;    // every rank's values: 3 per node
 };
 
 // GMRES's inner products (linear/preconditioned_gmres.h) of vectors split by rows over the

@@ -70,24 +70,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 }
 
 PointField WallOperator::apply(const PointField& f) {
-  PointField u;
   if (near_and_real_) {
-    const bool distributed = ewald_->smooth().grid().distributed();
-    u = ewald_->smooth_single_layer(*node_spreading_, f);
-    if (!near_.coincident.empty() && (!distributed || ranks_.root())) {  // once in the ranks' sum
-      const PointField density = elements_->weighted_density(f);
-      const double self = ewald_real_stokeslet_self(ewald_->xi());
-      for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
-    }
-    Eigen::VectorXd rest = *near_and_real_ * to_vector(f);
-    if (distributed) {
-      rest += to_vector(u);  // this rank's planes' part of the smooth sum too
-      ranks_.sum(rest);
-      return to_field(rest);
-    }
-    ranks_.sum(rest);  // the ranks' rows
-    return u + to_field(rest);
+    const OwnedSegments nodes(num_targets(), ranks_);
+    return to_field(nodes.gather(apply_mine(f, nodes)));
   }
+  PointField u;
   const PointField density = elements_->weighted_density(f);
   const Eigen::Index first = target_rows_ ? target_rows_->begin : 0;  // of the near field's targets
   if (ewald_) {
@@ -111,6 +98,26 @@ PointField WallOperator::apply(const PointField& f) {
   const Eigen::VectorXd correction = near_.correction * to_vector(f);
   u.middleRows(first, correction.size() / 3) += to_field(correction);
   return u;
+}
+
+Eigen::VectorXd WallOperator::apply_mine(const PointField& f, const OwnedSegments& nodes) {
+  if (!near_and_real_) return nodes.mine(to_vector(apply(f)));
+  const OwnedRange rows = owned_block(num_targets(), ranks_);  // of the assembled matrix
+  if (nodes.nodes().begin != rows.begin || nodes.nodes().end != rows.end)
+    throw std::invalid_argument("WallOperator::apply_mine: the segments are not the assembled rows' blocks");
+  const bool distributed = ewald_->smooth().grid().distributed();
+  // The smooth part: this rank's planes' share at every target on a split grid, else all of it
+  // (the same on every rank).
+  PointField u = ewald_->smooth_single_layer(*node_spreading_, f);
+  if (!near_.coincident.empty() && (!distributed || ranks_.root())) {  // once in the ranks' sum
+    const PointField density = elements_->weighted_density(f);
+    const double self = ewald_real_stokeslet_self(ewald_->xi());
+    for (const auto& [t, q] : near_.coincident) u.row(t) += self * density.row(q);
+  }
+  Eigen::VectorXd v = *near_and_real_ * to_vector(f);  // this rank's rows, zeros elsewhere
+  v += to_vector(u);
+  // Only a split grid's smooth part needs the other ranks' shares at this rank's rows.
+  return distributed ? nodes.sum_mine(v) : nodes.mine(v);
 }
 
 void WallOperator::report_memory(MemoryReport& report, const std::string& prefix) const {

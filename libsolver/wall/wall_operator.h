@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "libsolver/parallel/communicator.h"
+#include "libsolver/parallel/owned_rows.h"
 #include "libsolver/spme/ewald_plan.h"
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/spme/spme_grid_cache.h"
@@ -66,6 +67,13 @@ class WallOperator {
 
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);
+  // This rank's segment of apply(f) (as to_vector, parallel/owned_rows.h), for the targets split
+  // over `ranks` in the blocks of the assembled rows (an operator at the wall nodes; the wall
+  // solve's GMRES on split vectors): the ranks' parts are summed only where the smooth part is
+  // split over them, and only into each owner's segment. Without assembled rows: the segment
+  // of apply(f).
+  Eigen::VectorXd apply_mine(const PointField& f, const OwnedSegments& nodes);
+  const Communicator& ranks() const { return ranks_; }
 
   const WallElements& elements() const { return *elements_; }
   // With RealSpace::assembled the correction is part of the assembled rows and empty here.

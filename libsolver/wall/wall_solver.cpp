@@ -19,16 +19,23 @@ WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
                                const PointField& initial_guess) {
-  const Eigen::VectorXd b = (8.0 * std::numbers::pi * mu) * to_vector(velocity);
-  Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? to_vector(initial_guess) : Eigen::VectorXd::Zero(b.size());
-  auto A = [&](const Eigen::VectorXd& f) { return to_vector(op_.apply(to_field(f))); };
-  auto M_inv = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(near_lu_.solve(r)); };
+  // GMRES's vectors (the Krylov basis, the recycled space) are this rank's segment of the nodes
+  // (parallel/owned_rows.h); a product and the preconditioner gather the whole vector first
+  // (the LU is of every node's near field).
+  const OwnedSegments nodes(op_.num_targets(), op_.ranks());
+  const Eigen::VectorXd b = nodes.mine((8.0 * std::numbers::pi * mu) * to_vector(velocity));
+  Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? nodes.mine(to_vector(initial_guess))
+                                                              : Eigen::VectorXd::Zero(b.size());
+  auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f)), nodes); };
+  auto M_inv = [&](const Eigen::VectorXd& r) { return nodes.mine(near_lu_.solve(nodes.gather(r))); };
   WallSolution s;
-  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_);
+  s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_,
+                                 nullptr, SplitInnerProducts{op_.ranks()});
   if (!s.gmres.converged)
     throw std::runtime_error("wall solve did not converge: relative residual " +
                              std::to_string(s.gmres.relative_residual) + " after " +
                              std::to_string(s.gmres.iterations) + " GMRES iterations");
+  x = nodes.gather(x);
   s.force = to_field(x);
   return s;
 }

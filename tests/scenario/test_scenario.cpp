@@ -166,7 +166,7 @@ TEST(Scenario, MemoryBudgetKeepsDropsOrRefuses) {
   EXPECT_LT(few.memory.total(), more.memory.total());
   EXPECT_TRUE(more.keeps_pair_coefficients);
   ASSERT_GT(more.memory.kept_coefficients, 0);
-  EXPECT_EQ(more.memory.parts.size(), 6u);  // geometry, singular, nearly singular, Ewald, wall, coupling
+  EXPECT_EQ(more.memory.parts.size(), 7u);  // geometry, singular, nearly singular, Ewald, wall, recycled space, coupling
 
   constexpr double gib = 1024.0 * 1024.0 * 1024.0;
   const Scenario returned = prepare_scenario(
