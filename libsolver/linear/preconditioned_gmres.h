@@ -21,12 +21,14 @@
 namespace rbcflow {
 
 // The inner products of GMRES's vectors, whole on this process. A solve whose vectors are split
-// over ranks passes its own (SplitInnerProducts, parallel/owned_rows.h): the same three
-// operations, each summing the ranks' parts.
+// over ranks passes its own (SplitInnerProducts, parallel/owned_rows.h): the same operations,
+// each summing the ranks' parts, and all() true only where it is on every rank (a decision the
+// ranks must take alike: a rank holding no rows cannot tell from its sizes alone).
 struct LocalInnerProducts {
   double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const { return a.dot(b); }
   double norm(const Eigen::VectorXd& a) const { return a.norm(); }
   void sum(Eigen::VectorXd&) const {}  // of partial inner products (C^T r with C split by rows)
+  bool all(bool here) const { return here; }
 };
 
 struct GmresReport {
@@ -88,7 +90,7 @@ GmresReport preconditioned_gmres(Operator&& A, Preconditioner&& M_inv, const Eig
     report.converged = true;
     return report;
   }
-  bool image_known = image && image->size() == b.size();
+  bool image_known = products.all(image && image->size() == b.size());
   while (true) {
     Eigen::VectorXd r = b - (image_known ? *image : Eigen::VectorXd(A(x)));
     image_known = false;  // a restart recomputes the residual

@@ -75,6 +75,12 @@ struct SplitInnerProducts {
     return std::sqrt(s[0]);
   }
   void sum(Eigen::VectorXd& partial) const { ranks.sum(partial); }
+  bool all(bool here) const {
+    Eigen::VectorXd not_here(1);
+    not_here[0] = here ? 0.0 : 1.0;
+    ranks.sum(not_here);
+    return not_here[0] == 0.0;
+  }
 };
 
 }  // namespace rbcflow
