@@ -24,7 +24,8 @@ struct WallSolveOptions {
   // slow modes grow with the tube's length); kept to 150 at 33,803 nodes, a later solve takes
   // 132 iterations instead of 59 (bench/bench_wall.cpp, LongTube).
   int recycle = 300;
-  // The ranks that share the wall operator's assembled rows (wall_operator.h); default one.
+  // The ranks that share the wall operator's assembled rows (wall_operator.h) and the solve's
+  // GMRES vectors, each its nodes' segment (WallSolver::solve); default one.
   Communicator ranks{};
 };
 
