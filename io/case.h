@@ -135,6 +135,9 @@ struct CaseSolver {
   // The memory the run may use, GiB; empty: the machine's physical memory. rbcflow check and
   // run refuse a case whose estimate exceeds it (scenario/memory_budget.h).
   std::optional<double> memory_gib;
+  // The wall nodes of a block of the wall solve's block-Jacobi preconditioner
+  // (libsolver/wall/wall_preconditioner.h); a wall of at most this many is one block.
+  int wall_preconditioner_block_nodes = 500;
   bool operator==(const CaseSolver&) const = default;
 };
 

@@ -556,6 +556,8 @@ CaseSolver read_solver(Table& top) {
   s.max_iterations = t->integer("max_iterations", s.max_iterations, 1, 100000);
   s.patch_radial_points = t->optional_integer("patch_radial_points", 4, 64);
   s.memory_gib = t->optional_real("memory_gib", open_closed(0, 1e6));
+  s.wall_preconditioner_block_nodes =
+      t->integer("wall_preconditioner_block_nodes", s.wall_preconditioner_block_nodes, 1, 10000000);
   t->finish();
   return s;
 }

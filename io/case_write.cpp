@@ -234,6 +234,8 @@ std::string case_toml(const Case& c) {
   w.key("max_iterations", c.solver.max_iterations);
   if (c.solver.patch_radial_points) w.key("patch_radial_points", *c.solver.patch_radial_points);
   if (c.solver.memory_gib) w.key("memory_gib", *c.solver.memory_gib);
+  if (c.solver.wall_preconditioner_block_nodes != CaseSolver{}.wall_preconditioner_block_nodes)
+    w.key("wall_preconditioner_block_nodes", c.solver.wall_preconditioner_block_nodes);
   write_time(w, c.time);
   write_output(w, c.output);
   w.table("units");
@@ -258,6 +260,9 @@ std::string case_fingerprint(const Case& c) {
   physics.title.clear();
   physics.output = CaseOutput{};
   physics.time.end = 1.0;
+  // The preconditioner changes a solve's iterations, not its solution (to the GMRES tolerance):
+  // a checkpoint restarts with any blocks.
+  physics.solver.wall_preconditioner_block_nodes = CaseSolver{}.wall_preconditioner_block_nodes;
   std::string mesh_bytes;
   if (physics.vessel && physics.vessel->kind == VesselKind::file) {
     // The mesh file by its name and content, not by the folder it lies in.

@@ -79,6 +79,7 @@ CellStepperOptions solver_options(const Case& c) {
   o.quadrature.radial_points = c.solver.patch_radial_points.value_or(0);
   o.volume_constraint = c.time.volume_constraint;
   o.wall_solve.tolerance = c.solver.gmres_tolerance;
+  o.wall_solve.preconditioner_block_nodes = c.solver.wall_preconditioner_block_nodes;
   o.domain.ewald_tolerance = c.ewald.tolerance;
   o.domain.ranks = Communicator::world();  // one rank unless started by mpirun
   if (c.domain.kind == DomainKind::periodic) {

@@ -8,26 +8,33 @@
 
 namespace rbcflow {
 
-WallSolver::WallSolver(WallOperator op) : op_(std::move(op)) {
-  if (op_.num_targets() != op_.elements().num_nodes())
+namespace {
+
+const WallOperator& wall_targets(const WallOperator& op) {
+  if (op.num_targets() != op.elements().num_nodes())
     throw std::invalid_argument("wall solver: the operator's targets must be the wall nodes");
-  near_lu_.compute(op_.near().local);
-  if (near_lu_.info() != Eigen::Success)
-    throw std::runtime_error("wall solver: the near-field preconditioner is singular");
-  op_.release_local_near_field();  // the factorisation keeps its own copy
+  return op;
+}
+
+}  // namespace
+
+WallSolver::WallSolver(WallOperator op, const WallSolveOptions& options)
+    : op_(std::move(op)),
+      preconditioner_(wall_targets(op_).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()) {
+  op_.release_local_near_field();  // the factorisations keep their own copies
 }
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
                                const PointField& initial_guess) {
   // GMRES's vectors (the Krylov basis, the recycled space) are this rank's segment of the nodes
   // (parallel/owned_rows.h); a product and the preconditioner gather the whole vector first
-  // (the LU is of every node's near field).
+  // (a product needs every node's density, a block of the preconditioner its nodes').
   const OwnedSegments nodes(op_.num_targets(), op_.ranks());
   const Eigen::VectorXd b = nodes.mine((8.0 * std::numbers::pi * mu) * to_vector(velocity));
   Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? nodes.mine(to_vector(initial_guess))
                                                               : Eigen::VectorXd::Zero(b.size());
   auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f)), nodes); };
-  auto M_inv = [&](const Eigen::VectorXd& r) { return nodes.mine(near_lu_.solve(nodes.gather(r))); };
+  auto M_inv = [&](const Eigen::VectorXd& r) { return preconditioner_.solve_mine(nodes.gather(r), nodes); };
   WallSolution s;
   s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_,
                                  nullptr, SplitInnerProducts{op_.ranks()});
@@ -63,7 +70,7 @@ Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const Point
 void WallSolver::report_memory(MemoryReport& report) const {
   op_.report_memory(report, "wall operator");
   // L and U of the supernodal factorisation: a value and an index per nonzero.
-  report.add("wall preconditioner (LU)", static_cast<std::size_t>(near_lu_.nnzL() + near_lu_.nnzU()) * (sizeof(double) + sizeof(int)));
+  report.add("wall preconditioner (LU)", preconditioner_.bytes());
   report.add("wall recycled space", matrix_bytes(recycled_.U) + matrix_bytes(recycled_.C));
 }
 

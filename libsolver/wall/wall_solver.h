@@ -2,15 +2,16 @@
 // The wall solve (12) without cells: find the wall force density f with
 //   (1/(8 pi mu)) N_W f = v  at every wall node,
 // v the velocity the wall must cancel (<u> minus what the cells induce; <u> alone here), by
-// right-preconditioned GMRES. The preconditioner is a sparse LU of the local near-field
-// block (NearField::local), factorised once; build the operator with RealSpace::assembled so
-// that its real-space Ewald part is a sparse matrix too. Not converging is an error.
+// right-preconditioned GMRES. The preconditioner is block-Jacobi with sparse LUs of the local
+// near field (NearField::local) on slabs of the wall (wall_preconditioner.h), factorised once;
+// build the operator with RealSpace::assembled so that its real-space Ewald part is a sparse
+// matrix too. Not converging is an error.
 #include <Eigen/Core>
-#include <Eigen/SparseLU>
 #include <vector>
 
 #include "libsolver/linear/preconditioned_gmres.h"
 #include "wall_operator.h"
+#include "wall_preconditioner.h"
 
 namespace rbcflow {
 
@@ -24,6 +25,10 @@ struct WallSolveOptions {
   // slow modes grow with the tube's length); kept to 150 at 33,803 nodes, a later solve takes
   // 132 iterations instead of 59 (bench/bench_wall.cpp, LongTube).
   int recycle = 300;
+  // The nodes of a block of the preconditioner (wall_preconditioner.h), read when the solver
+  // is built (WallSolver's constructor): a wall of at most this many nodes is one block, the
+  // LU of its whole local near field.
+  int preconditioner_block_nodes = 500;
   // The ranks that share the wall operator's assembled rows (wall_operator.h) and the solve's
   // GMRES vectors, each its nodes' segment (WallSolver::solve); default one.
   Communicator ranks{};
@@ -36,8 +41,9 @@ struct WallSolution {
 
 class WallSolver {
  public:
-  // `op` must have the wall nodes as its targets.
-  explicit WallSolver(WallOperator op);
+  // `op` must have the wall nodes as its targets; the preconditioner's blocks are of
+  // options.preconditioner_block_nodes nodes, shared by op.ranks().
+  explicit WallSolver(WallOperator op, const WallSolveOptions& options = {});
 
   // Throws std::runtime_error when GMRES stops unconverged. `initial_guess` (one row per node,
   // or empty for zero) is typically the previous step's force.
@@ -49,14 +55,16 @@ class WallSolver {
   // restart solve alike.
   std::vector<WallSolution> seed(const std::vector<PointField>& velocities, double mu, const WallSolveOptions& options);
   int recycled_directions() const { return recycled_.size(); }
-  // "wall operator: ...", "wall preconditioner (LU)", "wall recycled space" (memory_report.h).
+  int preconditioner_blocks() const { return preconditioner_.blocks(); }
+  // "wall operator: ...", "wall preconditioner (LU)" (this rank's blocks), "wall recycled
+  // space" (memory_report.h).
   void report_memory(MemoryReport& report) const;
 
   WallOperator& op() { return op_; }
 
  private:
   WallOperator op_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> near_lu_;
+  WallPreconditioner preconditioner_;
   RecycledSpace recycled_;
 };
 

@@ -53,6 +53,7 @@ spline_order = 6
 gmres_tolerance = 1e-6
 max_iterations = 100
 patch_radial_points = 24
+wall_preconditioner_block_nodes = 2000
 
 [time]
 end = 10.0
@@ -114,6 +115,7 @@ TEST(Case, ContractExampleReadsEveryKey) {
   EXPECT_EQ(c.ewald.grid, (std::array<int, 3>{64, 64, 128}));
   EXPECT_EQ(c.ewald.spline_order, 6);
   EXPECT_EQ(c.solver.patch_radial_points, 24);
+  EXPECT_EQ(c.solver.wall_preconditioner_block_nodes, 2000);
   EXPECT_FALSE(c.time.dt);  // "auto"
   EXPECT_EQ(c.output.dir, fs::path("out/tube6"));
   EXPECT_TRUE(c.output.xdmf && c.output.vtk);
@@ -133,6 +135,7 @@ TEST(Case, DefaultsAreFilledIn) {
   EXPECT_FALSE(c.ewald.alpha);
   EXPECT_EQ(c.solver.max_iterations, 100);
   EXPECT_FALSE(c.solver.patch_radial_points);  // libsolver's default for the order
+  EXPECT_EQ(c.solver.wall_preconditioner_block_nodes, 500);
   EXPECT_EQ(c.time.end, 10.0);
   EXPECT_EQ(c.time.scheme, TimeSchemeKind::euler);
   EXPECT_EQ(c.output.every, 100);
@@ -219,12 +222,13 @@ TEST(Case, WrittenCaseReadsBackEqual) {
   fs::remove_all(dir);
 }
 
-TEST(Case, FingerprintIgnoresOutputTitleAndEndTimeOnly) {
+TEST(Case, FingerprintIgnoresOutputTitleEndTimeAndPreconditionerOnly) {
   const Case a = parse_case(kFull, "a.toml");
   Case b = a;
   b.title = "other";
   b.output.dir = "elsewhere";
   b.time.end = 20;
+  b.solver.wall_preconditioner_block_nodes = 100000;
   EXPECT_EQ(case_fingerprint(a), case_fingerprint(b));
   EXPECT_EQ(case_fingerprint(a).size(), 16u);
   b.cells->order = 12;
@@ -326,6 +330,8 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
   EXPECT_EQ(error_of(minimal("[ewald]\ngrid = [16, 17, 16]\n")), "bad.toml:5: ewald.grid: 17 is odd (grid sides are even)");
   EXPECT_EQ(error_of(minimal("[solver]\npatch_radial_points = 2\n")),
             "bad.toml:5: solver.patch_radial_points: 2 is out of range (allowed: integers 4..64)");
+  EXPECT_EQ(error_of(minimal("[solver]\nwall_preconditioner_block_nodes = 0\n")),
+            "bad.toml:5: solver.wall_preconditioner_block_nodes: 0 is out of range (allowed: integers 1..10000000)");
   EXPECT_EQ(error_of(minimal("[output]\nevery = 0\n")),
             "bad.toml:5: output.every: 0 is out of range (allowed: integers 1..2147483647)");
   EXPECT_EQ(error_of(minimal("[cells]\norder = 99999999999999\n")),

@@ -284,6 +284,45 @@ TEST(DistributedWall, RecycledSpaceOnTheRanksEqualsOneRank) {
   EXPECT_EQ(recycled_bytes(split) * static_cast<std::size_t>(n), recycled_bytes(whole) * mine);
 }
 
+// The preconditioner's blocks split over the ranks (wall_preconditioner.h): the blocks depend
+// on the wall alone, so the solve takes one rank's iterations to its force, each block's LU is
+// held by one rank only, and together the ranks hold exactly one rank's LUs.
+TEST(DistributedWall, PreconditionerBlocksSplitOverTheRanks) {
+  const auto e = small_tube();
+  const PeriodicBox box(kTubeBox);
+  const auto assembled = WallOperator::RealSpace::assembled;
+  const Communicator world = Communicator::world();
+  WallSolveOptions options;
+  options.preconditioner_block_nodes = 40;
+  WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled), options);
+  WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, world), options);
+  ASSERT_GE(one.preconditioner_blocks(), 4);
+  EXPECT_EQ(shared.preconditioner_blocks(), one.preconditioner_blocks());
+  const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
+  const WallSolution a = one.solve(v, 1.0, options), b = shared.solve(v, 1.0, options);
+  EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
+  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  std::printf("  %d preconditioner blocks: wall force %.1e from one rank's, %d iterations\n",
+              shared.preconditioner_blocks(), d, b.gmres.iterations);
+  // As SolveOnTheRanksEqualsOneRank: the preconditioner adds zeros to each value only.
+  EXPECT_LT(d, 1e-12);
+  EXPECT_EQ(spread_over_ranks(world, b.force), 0.0);
+  auto lu_bytes = [](const WallSolver& s) {
+    MemoryReport r;
+    s.report_memory(r);
+    for (const MemoryReport::Item& i : r.items())
+      if (i.name == "wall preconditioner (LU)") return static_cast<double>(i.bytes);
+    return 0.0;
+  };
+  Eigen::VectorXd held(1);
+  held[0] = lu_bytes(shared);
+  world.sum(held);
+  EXPECT_EQ(held[0], lu_bytes(one));
+  if (world.size() > 1) {
+    EXPECT_LT(lu_bytes(shared), lu_bytes(one));
+  }
+}
+
 // More ranks than cells: a rank that owns none takes part in every product with nothing.
 TEST(DistributedLayers, ARankWithoutCells) {
   const Communicator world = Communicator::world();
