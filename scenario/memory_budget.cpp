@@ -26,8 +26,8 @@ constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 // The fractions of the parts that the ranks split (memory_budget.h).
 constexpr double kSplitEwaldWorkArrays = 0.15;  // with the slabs; none without
-constexpr double kSplitWall = 0.84;              // with the slabs
-constexpr double kSplitWallWithoutSlabs = 0.77;
+constexpr double kSplitWall = 1.0;               // with the slabs
+constexpr double kSplitWallWithoutSlabs = 0.91;
 constexpr double kSplitCoupling = 0.9;
 
 const EwaldSum* find_sum(const Scenario& s, const std::string& what) {
@@ -95,7 +95,7 @@ MemoryEstimate estimate_memory(const Scenario& s, int ranks) {
     }
   }
   if (wall_nodes > 0) {
-    m.parts.push_back({"wall", 67.1e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
+    m.parts.push_back({"wall", 54.9e3 * wall_nodes, slabs ? kSplitWall : kSplitWallWithoutSlabs});
     // U and C of the recycled Krylov space, each rank its segment of the nodes (wall_solver.h).
     m.parts.push_back({"wall recycled space", 48.0 * s.options.wall_solve.recycle * wall_nodes, 1.0});
     if (cells > 0) {

@@ -16,7 +16,7 @@
 //                        250 bytes of stencils per node;
 //                        one product's work arrays, 48 bytes per grid point (two arrays of 3
 //                        grids, transformed in place; 32 with lean transforms, below)
-//   wall                 67.1 kB per wall node (operator, near field, preconditioner) and the
+//   wall                 54.9 kB per wall node (operator, near field, preconditioner) and the
 //                        recycled space, 48 bytes per node and direction (WallSolveOptions::recycle)
 //   cells <-> wall       17.0 kB per wall node and 1.7 kB per cell node (no kept pair
 //                        coefficients: each of these operators is applied once a step)
@@ -33,8 +33,12 @@
 // (2 ranks against 1 process, 79b58a5 and, for the wall, the commit that freed its near field):
 // the cells' geometry, corrections and Ewald pairs, and the cell-wall coupling but for the
 // wall's stencils at the cells (0.9), are split; of the Ewald work arrays 0.15 with FFTW's MPI
-// library (the slabs), else none; of the wall 0.84 (its assembled real-space rows and their
-// spreading rows and grid; 0.77 without the slabs): its LU and recycled space are repeated.
+// library (the slabs), else none; the wall's assembled real-space rows, their spreading rows and
+// grid, the preconditioner's blocks and the recycled space are split (of the wall 0.91 without
+// the slabs: the smooth part's grid is then whole on every rank). The wall's 54.9 kB a node are
+// the 67.1 calibrated with the LU of the whole local near field (14.7 kB a node of tube27's
+// wall, repeated on every rank), less that LU, plus the preconditioner's blocks of 500 nodes
+// (2.5 kB a node; bench_wall WallBlocks/27 at e5920a6).
 // The ranks on one machine share its memory: each gets the budget divided by their number.
 #include <string>
 #include <vector>
