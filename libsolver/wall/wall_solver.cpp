@@ -69,7 +69,6 @@ Eigen::Vector3d mean_pressure_gradient(const WallElements& elements, const Point
 
 void WallSolver::report_memory(MemoryReport& report) const {
   op_.report_memory(report, "wall operator");
-  // L and U of the supernodal factorisation: a value and an index per nonzero.
   report.add("wall preconditioner (LU)", preconditioner_.bytes());
   report.add("wall recycled space", matrix_bytes(recycled_.U) + matrix_bytes(recycled_.C));
 }
