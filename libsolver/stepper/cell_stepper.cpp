@@ -377,6 +377,15 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     for (const Cell& c : cells_) shapes.push_back(c.shape);
     const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
     const CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold);
+    // Surfaces left crossing (each other or the wall) make the boundary integrals meaningless
+    // and the run blows up some steps later: stop here, at the last checkpoint's state.
+    if (!k.converged && k.min_separation < 0) {
+      throw std::runtime_error("collision removal left cell surfaces crossing after " + std::to_string(k.passes) +
+                               " passes (smallest separation " + std::to_string(k.min_separation) + ", h_s = " +
+                               std::to_string(options_.collision_threshold) + ")" + at_step(state_.steps + 1) +
+                               ": the cells moved into each other (or the wall) faster than the removal separates "
+                               "them; try a smaller time step");
+    }
     for (int c = 0; c < nc; ++c) cells_[c].shape = std::move(shapes[c]);
     report.collision_pairs = k.cell_pairs;
     report.wall_contacts = k.wall_contacts;

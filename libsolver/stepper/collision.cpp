@@ -20,6 +20,11 @@ constexpr double kOvershoot = 0.01;
 // spacing away, within 2 h_s of the surface, it gains a factor ~ 2 h_s * curvature (< 0.2)
 // per iteration: 6 leave < 1e-5 of the grid spacing.
 constexpr int kProjectionIterations = 6;
+// The pushes are met to 1% of the largest at the pushed points (fit_push), within at most 50
+// iterations (the slowest pushes, a single point at the first Gauss colatitude, keep ~0.15 of
+// their size per analysis: 0.85^28 < 1%).
+constexpr double kFitTolerance = 0.01;
+constexpr int kFitIterations = 50;
 
 // One cell at the current pass: its grid points, a bounding sphere, and (when a neighbour
 // comes close) the AABB tree over its grid triangulation.
@@ -45,12 +50,20 @@ struct Neighbour {
   int pair = 0;
 };
 
-// Pushes the points of cell `a` away from cell `b` translated by `offset` (a periodic image):
-// each point within h_s of b moves half of the missing separation along b's outward normal at
-// its projection (section 11.2, the push shared with b). Returns whether any point moved.
-bool push_from_cell(const CellView& a, const CellView& b, const SHCoeffs& b_coeffs, const Eigen::Vector3d& offset,
-                    const SphGrid& grid, double h_s, Eigen::MatrixXd& push, double& min_separation) {
-  bool hit = false;
+// A grid point of a cell closer than h_s to a neighbour: the separation it lacks (to h_s (1 +
+// kOvershoot)) and the neighbour's outward normal at its projection.
+struct Contact {
+  int point = 0;
+  double missing = 0;
+  Eigen::Vector3d normal;
+};
+
+// The points of cell `a` within h_s of cell `b` translated by `offset` (a periodic image), in
+// b's outward normal at the projection (section 11.2).
+std::vector<Contact> contacts_with_cell(const CellView& a, const CellView& b, const SHCoeffs& b_coeffs,
+                                        const Eigen::Vector3d& offset, const SphGrid& grid, double h_s,
+                                        double& min_separation) {
+  std::vector<Contact> contacts;
   const double target = h_s * (1.0 + kOvershoot);
   for (int p = 0; p < a.points.rows(); ++p) {
     const Eigen::Vector3d q = a.points.row(p).transpose() - offset;  // in b's own frame
@@ -65,12 +78,9 @@ bool push_from_cell(const CellView& a, const CellView& b, const SHCoeffs& b_coef
     const Eigen::Vector2d angles = triangulation_seed(b.mesh, grid, c.triangle, q);
     const SurfaceProjection s = project_onto_surface(b_coeffs, q, angles[0], angles[1], kProjectionIterations);
     min_separation = std::min(min_separation, s.signed_distance);
-    if (s.signed_distance < h_s) {
-      push.row(p) += 0.5 * (target - s.signed_distance) * s.normal.transpose();
-      hit = true;
-    }
+    if (s.signed_distance < h_s) contacts.push_back({p, target - s.signed_distance, s.normal});
   }
-  return hit;
+  return contacts;
 }
 
 // Translations of cell b's images that may come within h_s of cell a: the minimum image and its
@@ -124,8 +134,9 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
     views[a].mesh = cells[a].triangulate(t);
     views[a].tree = std::make_unique<TriangleAabbTree>(views[a].mesh);
   }
-  std::vector<std::vector<char>> hit(n);  // per neighbour entry, written by its cell's thread only
-  for (int a = 0; a < n; ++a) hit[a].assign(near[a].size(), 0);
+  // contacts[a][k]: cell a's points too close to its k-th neighbour; written by a's thread only.
+  std::vector<std::vector<std::vector<Contact>>> contacts(n);
+  for (int a = 0; a < n; ++a) contacts[a].resize(near[a].size());
   std::vector<char> wall_hit(n, 0);
   const double target = h_s * (1.0 + kOvershoot);
   double min_separation = std::numeric_limits<double>::infinity();
@@ -133,9 +144,8 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   for (int a = 0; a < n; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       const Neighbour& nb = near[a][k];
-      hit[a][k] = push_from_cell(views[a], views[nb.b], cells[nb.b].coeffs(), nb.offset, t.grid(), h_s,
-                                 pass.push[a], min_separation);
-      if (hit[a][k]) pass.moved[a] = 1;
+      contacts[a][k] = contacts_with_cell(views[a], views[nb.b], cells[nb.b].coeffs(), nb.offset, t.grid(), h_s,
+                                          min_separation);
     }
     // The wall does not move: a point within h_s of it takes the whole push, along the wall
     // normal into the lumen.
@@ -150,14 +160,68 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       }
     }
   }
-  pass.min_separation = min_separation;
+  // A pair shares each push by the largest separation each side lacks: a side that finds
+  // deficit D_a takes D_a / (D_a + D_b) of its points' missing separation, half each when the
+  // two see the same (two smooth surfaces), all of it when the other side's grid points find
+  // none (a tip against a flat face, between the face's grid points). The shares sum to one,
+  // so the pair ends h_s apart, not 2 h_s - d.
+  std::vector<double> deficit(2 * static_cast<std::size_t>(pairs), 0.0);  // per pair: first side, second side
+  std::vector<int> sides(pairs, 0);
+  std::vector<std::vector<int>> side_of(n);
+  for (int a = 0; a < n; ++a) {
+    for (std::size_t k = 0; k < near[a].size(); ++k) {
+      const int pair = near[a][k].pair;
+      const int side = sides[pair]++;
+      side_of[a].push_back(side);
+      for (const Contact& c : contacts[a][k]) deficit[2 * pair + side] = std::max(deficit[2 * pair + side], c.missing);
+    }
+  }
   std::vector<char> pair_hit(pairs, 0);
-  for (int a = 0; a < n; ++a)
-    for (std::size_t k = 0; k < near[a].size(); ++k)
-      if (hit[a][k]) pair_hit[near[a][k].pair] = 1;
+  for (int a = 0; a < n; ++a) {
+    for (std::size_t k = 0; k < near[a].size(); ++k) {
+      if (contacts[a][k].empty()) continue;
+      const int pair = near[a][k].pair;
+      const double mine = deficit[2 * pair + side_of[a][k]], other = deficit[2 * pair + 1 - side_of[a][k]];
+      const double share = mine / (mine + other);
+      for (const Contact& c : contacts[a][k]) pass.push[a].row(c.point) += share * c.missing * c.normal.transpose();
+      pass.moved[a] = 1;
+      pair_hit[pair] = 1;
+    }
+  }
+  pass.min_separation = min_separation;
   pass.cell_pairs = static_cast<int>(std::count(pair_hit.begin(), pair_hit.end(), 1));
   pass.wall_contacts = static_cast<int>(std::count(wall_hit.begin(), wall_hit.end(), 1));
   return pass;
+}
+
+// The order-N displacement that moves every pushed grid point by its push (section 11.2
+// moves each such point until it is h_s away) and carries the others with the expansion. The
+// analysis of the push field alone (zero at the points not pushed) is its L2 projection, which
+// keeps only part of a local push: w_p N^2 / 4 pi ~ (pi / 4) sin(theta) of a single grid
+// point's, less near the poles. Richardson iterations on the pushed points, d += A M (P - S d)
+// (A analysis, S synthesis, M the pushed points), converge to the displacement that meets the
+// pushes there: M S A M is a product of two projections orthogonal in the quadrature inner
+// product, so its eigenvalues lie in [0, 1] and the iteration never amplifies the residual.
+// A single pushed point's displacement is the band-limited kernel centred on it, largest there.
+SHCoeffs fit_push(const SHTransform& t, const Eigen::MatrixXd& push, int order) {
+  const Eigen::VectorXd size = push.rowwise().norm();
+  const double tolerance = kFitTolerance * size.maxCoeff();
+  SHCoeffs d = t.analyze(push, order);
+  Eigen::MatrixXd residual(push.rows(), 3);
+  for (int it = 0; it < kFitIterations; ++it) {
+    residual = push - t.synthesize(d);
+    double largest = 0;
+    for (int p = 0; p < push.rows(); ++p) {
+      if (size[p] == 0) {
+        residual.row(p).setZero();
+      } else {
+        largest = std::max(largest, residual.row(p).norm());
+      }
+    }
+    if (largest <= tolerance) break;
+    d.values() += t.analyze(residual, order).values();
+  }
+  return d;
 }
 
 }  // namespace
@@ -198,7 +262,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     for (int i = 0; i < n; ++i) {
       if (!pass.moved[i]) continue;
       if (before[i].order() == 0) before[i] = cells[i].coeffs();
-      cells[i].coeffs().values() += grid_transform.analyze(pass.push[i], cells[i].order()).values();
+      cells[i].coeffs().values() += fit_push(grid_transform, pass.push[i], cells[i].order()).values();
     }
     ++report.passes;
   }

@@ -1,14 +1,17 @@
 #pragma once
 // Kinematic collision removal of section 11.2: after a position update, every cell surface
 // point x closer than h_s to another cell (or to the vessel wall) is moved along the direction
-// from its projection x_p on that surface until |x - x_p| = h_s; the displacement field on the
-// grid is analysed back onto the cell's spherical harmonics of order N, so the cell stays a
-// smooth order-N surface. Re-analysis smooths a local push, so detection and push are repeated
-// until no point is closer than h_s (or `max_iterations` passes).
+// from its projection x_p on that surface until |x - x_p| = h_s; the cell's order-N spherical
+// harmonic displacement is fitted to these pushes at the pushed grid points, so the cell stays
+// a smooth order-N surface. A push moves the points around it too, and may bring others
+// within h_s, so detection and push are repeated until no point is closer than h_s (or
+// `max_iterations` passes).
 //
 // Choices where the paper is silent (docs/method-notes.md):
-// - a cell-cell push is shared: each of the two surfaces moves half of h_s - d, so the pair
-//   ends h_s apart (moving both the whole way would leave 2 h_s - d); the wall takes none;
+// - a cell-cell push is shared so that the pair ends h_s apart (moving both the whole way
+//   would leave 2 h_s - d): each side takes D_self / (D_self + D_other) of h_s - d, D the
+//   largest deficit its grid points find: half each for two smooth surfaces, all of it for a
+//   tip whose neighbour's grid points straddle it; the wall takes none;
 // - the distance is to the spectral surface itself (Gauss-Newton projection seeded by the AABB
 //   tree over the grid triangulation), not to the triangulation, whose chord sag at N = 16 is
 //   of the order of h_s;

@@ -5,6 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
 
 #include "geometry/surface/reference_shapes.h"
 #include "geometry/surface/surface_projection.h"
@@ -60,6 +65,9 @@ TEST(Collision, TwoSpheresEndAtThreshold) {
   std::printf("pairs %d  max overlap %.4f  max displacement %.4f  passes %d  min separation %.5f\n", r.cell_pairs,
               r.max_overlap, r.max_displacement, r.passes, r.min_separation);
   EXPECT_TRUE(r.converged);
+  // The displacement fitted to the pushes meets them at the pushed points: one pass (the
+  // analysis of the pushes alone kept part of each and took a second).
+  EXPECT_EQ(r.passes, 1);
   EXPECT_EQ(r.cell_pairs, 1);
   EXPECT_EQ(r.wall_contacts, 0);
   EXPECT_GT(r.max_overlap, kThreshold - 0.01 - 0.02);  // grid points sit off the contact point
@@ -175,4 +183,68 @@ TEST(Collision, StepReportsTheRemoval) {
   // The pair shares each push, so no point moves by h_s or more (here 3.6e-3: at N = 8 the
   // nearest grid points sit 0.17 rad from the contact, where the gap is already ~0.04).
   EXPECT_LT(r.collision_displacement, kThreshold);
+}
+
+// The tip of a prolate spheroid (semi-axes 0.35, 0.35, 1: tip radius of curvature 0.12) pushed
+// 0.04 into a unit sphere, at N = 12 with h_s = 0.02. The sphere's grid points straddle the tip
+// and find it farther than the tip's grid points find the sphere, so the tip takes the larger
+// share of the push; split evenly, the deficit only halved each pass (8 passes). In every
+// orientation (the tip at a pole of its grid, on its equator, between) two passes suffice,
+// and no point is moved by more than the largest separation missing.
+TEST(Collision, TipAgainstAFaceTakesTheLargerShare) {
+  const int order = 12;
+  const double h_s = 0.02, depth = 0.04;
+  const SHTransform t = SHTransform::gauss(order);
+  for (const double tilt : {0.0, 0.3, std::numbers::pi / 2}) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    SHSurface tip = make_ellipsoid(order, Eigen::Vector3d(0.35, 0.35, 1.0));
+    tip.rotate(R);
+    const Eigen::Vector3d towards = -(R * Eigen::Vector3d::UnitZ());  // from the origin to the tip
+    std::vector<SHSurface> cells{sphere_at(towards * (2.0 - depth), order), tip};
+    const CollisionReport r = remove_collisions(cells, t, Eigen::Vector3d::Zero(), nullptr, h_s);
+    std::printf("tilt %.2f: passes %d  max overlap %.4f  max displacement %.4f  min separation %.5f\n", tilt,
+                r.passes, r.max_overlap, r.max_displacement, r.min_separation);
+    EXPECT_TRUE(r.converged) << tilt;
+    EXPECT_LE(r.passes, 2) << tilt;
+    EXPECT_GE(std::min(separation(cells[0], cells[1], t), separation(cells[1], cells[0], t)), h_s - 1e-9) << tilt;
+    EXPECT_LE(r.max_displacement, h_s * 1.01 + depth) << tilt;
+  }
+}
+
+// A cell inside another (concentric unit spheres, the inner one scaled by 0.5-0.98): each
+// push moves the inner surface through the outer one and back, and 20 passes leave them
+// crossing. The removal says so, and the stepper stops with a message naming the step rather
+// than carry crossing surfaces into the next solve.
+TEST(Collision, CrossingSurfacesLeftAreAnError) {
+  const int order = 8;
+  const SHTransform t = SHTransform::gauss(order);
+  for (const double inner : {0.5, 0.9, 0.98}) {
+    std::vector<SHSurface> cells{sphere_at({0, 0, 0}, order), sphere_at({0, 0, 0}, order)};
+    cells[1].coeffs().values() *= inner;
+    const CollisionReport r = remove_collisions(cells, t, Eigen::Vector3d::Zero(), nullptr, kThreshold);
+    EXPECT_FALSE(r.converged) << inner;
+    EXPECT_LT(r.min_separation, 0.0) << inner;
+  }
+  auto grids = CellGrids::make(order, 2 * order);
+  std::vector<Cell> cells;
+  for (const double scale : {1.0, 0.5}) {
+    Cell c;
+    c.shape = sphere_at({0, 0, 0}, order);
+    c.shape.coeffs().values() *= scale;
+    c.membrane = std::make_shared<const Membrane>(c.shape, grids,
+                                                  MembraneParameters{make_membrane_law("skalak", 1.0, 10.0), 0.01});
+    cells.push_back(std::move(c));
+  }
+  CellStepperOptions o;
+  o.dt = 1e-3;
+  o.collision_threshold = kThreshold;
+  CellStepper stepper(cells, grids, o);
+  try {
+    stepper.advance(stepper.solve());
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("collision removal left cell surfaces crossing"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("step 1"), std::string::npos) << e.what();
+  }
 }
