@@ -1,6 +1,7 @@
 #include "owned_rows.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace rbcflow {
 
@@ -44,30 +45,75 @@ Eigen::MatrixXd OwnedRows::gather(const Eigen::MatrixXd& mine) const {
   return all;
 }
 
-OwnedSegments::OwnedSegments(int nodes, const Communicator& ranks)
-    : ranks_(ranks), total_(nodes), mine_(owned_block(nodes, ranks)) {
+OwnedSegments::OwnedSegments(int nodes, const Communicator& ranks) : ranks_(ranks), total_(nodes) {
+  const OwnedRange mine = owned_block(nodes, ranks);
+  begin_ = mine.begin;
+  end_ = mine.end;
   for (int r = 0; r < ranks.size(); ++r) counts_.push_back(3 * owned_block(nodes, r, ranks.size()).size());
+}
+
+OwnedSegments::OwnedSegments(std::vector<int> order, const std::vector<int>& first, const Communicator& ranks)
+    : ranks_(ranks), total_(static_cast<int>(order.size())), order_(std::move(order)), place_(total_, -1) {
+  if (first.size() != static_cast<std::size_t>(ranks.size()) + 1 || first.front() != 0 || first.back() != total_)
+    throw std::invalid_argument("OwnedSegments: the segments' first positions must run from 0 to the nodes, one per rank and one more");
+  for (int k = 0; k < total_; ++k) {
+    const int i = order_[k];
+    if (i < 0 || i >= total_ || place_[i] >= 0) throw std::invalid_argument("OwnedSegments: the order is not a permutation of the nodes");
+    place_[i] = k;
+  }
+  for (int r = 0; r < ranks.size(); ++r) {
+    if (first[r + 1] < first[r]) throw std::invalid_argument("OwnedSegments: the segments' first positions must not decrease");
+    counts_.push_back(3 * (first[r + 1] - first[r]));
+  }
+  begin_ = first[ranks.rank()];
+  end_ = first[ranks.rank() + 1];
+}
+
+int OwnedSegments::position(int node) const {
+  const int k = order_.empty() ? node : place_[node];
+  return begin_ <= k && k < end_ ? k - begin_ : -1;
+}
+
+bool OwnedSegments::operator==(const OwnedSegments& o) const {
+  return total_ == o.total_ && begin_ == o.begin_ && end_ == o.end_ && counts_ == o.counts_ && order_ == o.order_;
+}
+
+Eigen::VectorXd OwnedSegments::ordered(const Eigen::VectorXd& all) const {
+  if (order_.empty()) return all;
+  Eigen::VectorXd out(all.size());
+  for (int k = 0; k < total_; ++k) out.segment<3>(3 * k) = all.segment<3>(3 * order_[k]);
+  return out;
+}
+
+Eigen::VectorXd OwnedSegments::unordered(const Eigen::VectorXd& in_order) const {
+  if (order_.empty()) return in_order;
+  Eigen::VectorXd out(in_order.size());
+  for (int k = 0; k < total_; ++k) out.segment<3>(3 * order_[k]) = in_order.segment<3>(3 * k);
+  return out;
 }
 
 Eigen::VectorXd OwnedSegments::mine(const Eigen::VectorXd& all) const {
   if (all.size() != 3 * static_cast<Eigen::Index>(total_)) throw std::invalid_argument("OwnedSegments::mine: not a vector of every node");
-  return all.segment(3 * mine_.begin, 3 * mine_.size());
+  Eigen::VectorXd out(3 * size());
+  for (int k = 0; k < size(); ++k) out.segment<3>(3 * k) = all.segment<3>(3 * node(k));
+  return out;
 }
 
 Eigen::VectorXd OwnedSegments::sum_mine(const Eigen::VectorXd& part) const {
   if (part.size() != 3 * static_cast<Eigen::Index>(total_)) throw std::invalid_argument("OwnedSegments::sum_mine: not a vector of every node");
-  Eigen::VectorXd sum(3 * mine_.size());
-  ranks_.sum_pieces({part.data(), static_cast<std::size_t>(part.size())}, {sum.data(), static_cast<std::size_t>(sum.size())},
+  const Eigen::VectorXd pieces = ordered(part);
+  Eigen::VectorXd sum(3 * size());
+  ranks_.sum_pieces({pieces.data(), static_cast<std::size_t>(pieces.size())}, {sum.data(), static_cast<std::size_t>(sum.size())},
                     counts_);
   return sum;
 }
 
 Eigen::VectorXd OwnedSegments::gather(const Eigen::VectorXd& mine) const {
-  if (mine.size() != 3 * mine_.size()) throw std::invalid_argument("OwnedSegments::gather: not this rank's segment");
+  if (mine.size() != 3 * size()) throw std::invalid_argument("OwnedSegments::gather: not this rank's segment");
   Eigen::VectorXd all(3 * static_cast<Eigen::Index>(total_));
   ranks_.gather_pieces({mine.data(), static_cast<std::size_t>(mine.size())}, {all.data(), static_cast<std::size_t>(all.size())},
                        counts_);
-  return all;
+  return unordered(all);
 }
 
 }  // namespace rbcflow

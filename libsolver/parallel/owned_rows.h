@@ -36,25 +36,43 @@ class OwnedRows {
 };
 
 // Node vectors interleaved (x0 y0 z0 x1 ...: wall_elements.h's to_vector) split over the ranks
-// by blocks of the nodes (owned_block): the wall solve's GMRES vectors (wall/wall_solver.h),
-// each rank holding the nodes whose rows of the assembled operator it holds (wall_operator.h).
+// by segments of the nodes: the wall solve's GMRES vectors (wall/wall_solver.h), each rank
+// holding the nodes whose rows of the assembled operator it holds (wall_operator.h). The nodes
+// are taken in an `order` (a permutation; by default their own) and cut into the ranks'
+// segments in rank order; a segment lists its nodes in that order.
 class OwnedSegments {
  public:
+  // Blocks of the nodes in their own order (owned_block).
   OwnedSegments(int nodes, const Communicator& ranks);
+  // Rank r's segment: order[first[r]] .. order[first[r + 1] - 1]; first has ranks + 1 entries
+  // from 0 to the number of nodes.
+  OwnedSegments(std::vector<int> order, const std::vector<int>& first, const Communicator& ranks);
 
-  const OwnedRange& nodes() const { return mine_; }  // this rank's
+  int size() const { return end_ - begin_; }  // this rank's nodes
+  int total() const { return total_; }
+  int node(int k) const { return order_.empty() ? begin_ + k : order_[begin_ + k]; }  // k-th of this rank's
+  // The position of `node` in this rank's segment, or -1 when another rank owns it.
+  int position(int node) const;
+  bool operator==(const OwnedSegments& o) const;
+
   // This rank's segment of `all` (3 values a node, every node).
   Eigen::VectorXd mine(const Eigen::VectorXd& all) const;
   // The sum over the ranks of their `part`s (every node each), this rank's segment of it.
   Eigen::VectorXd sum_mine(const Eigen::VectorXd& part) const;
-  // Every rank's segment (`mine` on each) in order, on every rank.
+  // Every rank's segment (`mine` on each) in place, on every rank.
   Eigen::VectorXd gather(const Eigen::VectorXd& mine) const;
 
  private:
+  // `all` (every node, node order) in the segments' order, and back.
+  Eigen::VectorXd ordered(const Eigen::VectorXd& all) const;
+  Eigen::VectorXd unordered(const Eigen::VectorXd& in_order) const;
+
   Communicator ranks_;
-  int total_ = 0;              // nodes
-  OwnedRange mine_;            // nodes
-  std::vector<int> counts_;    // every rank's values: 3 per node
+  int total_ = 0;               // nodes
+  int begin_ = 0, end_ = 0;     // this rank's positions in the order
+  std::vector<int> order_;      // empty: the nodes' own
+  std::vector<int> place_;      // place_[node]: its position in the order (with order_)
+  std::vector<int> counts_;     // every rank's values: 3 per node
 };
 
 // GMRES's inner products (linear/preconditioned_gmres.h) of vectors split by rows over the

@@ -13,7 +13,9 @@ WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const Perio
       options_(options),
       grid_cache_(work_arrays ? std::make_unique<SpmeGridCache>(std::move(work_arrays)) : std::make_unique<SpmeGridCache>()),
       solver_(WallOperator(elements_, elements_->wall.surface.points, box, ewald_tolerance, grid_cache_.get(),
-                           WallOperator::RealSpace::assembled, 0, options.ranks),
+                           WallOperator::RealSpace::assembled, 0, options.ranks, kAssembledRealSpace,
+                           wall_node_segments(elements_->wall.surface.points, options.preconditioner_block_nodes,
+                                              options.ranks)),
               options) {
   if (options_.recycle > 0) unit_forces();  // the seeds of the recycled Krylov space
 }

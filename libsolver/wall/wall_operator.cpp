@@ -21,16 +21,22 @@ PointField wrapped(const PointField& x, const PeriodicBox& box) {
 }  // namespace
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets)
-    : elements_(std::move(elements)), targets_(targets), near_(near_field(*elements_, targets_)) {
+    : elements_(std::move(elements)),
+      targets_(targets),
+      near_(near_field(*elements_, targets_)),
+      segments_(static_cast<int>(targets_.rows()), ranks_) {
   for (const auto& [t, q] : near_.coincident) targets_.row(t) = elements_->points.row(q);
 }
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
                            RealSpace real_space, long chosen_for_targets, Communicator ranks,
-                           const RealSpaceUse& assembled_use)
+                           const RealSpaceUse& assembled_use, std::optional<OwnedSegments> rows)
     : WallOperator(std::move(elements), targets) {
   ranks_ = ranks;
+  segments_ = rows ? std::move(*rows) : OwnedSegments(num_targets(), ranks_);
+  if (segments_.total() != num_targets())
+    throw std::invalid_argument("WallOperator: the rows' segments are not of the targets");
   const long n = elements_->points.rows();
   const RealSpaceUse use = real_space == RealSpace::assembled ? assembled_use : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;
@@ -46,7 +52,7 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                                                                      : SymmetricBlockMatrix::Precision::double_entries;
     near_and_real_.emplace(wall_real_space_blocks(*elements_, ewald_->neighbors(), ewald_->xi(),
                                                   Eigen::SparseMatrix<double, Eigen::RowMajor>(near_.correction),
-                                                  owned_block(static_cast<int>(targets_.rows()), ranks_), precision));
+                                                  segments_, precision));
     node_spreading_.emplace(ewald_->smooth().sources().spreading_matrix(elements_->density_map()));
     ewald_->release_real_space();                   // held in near_and_real_ now
     near_.correction = Eigen::SparseMatrix<double>();  // so is this
@@ -55,7 +61,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks)
-    : elements_(std::move(elements)), targets_(targets), target_rows_(rows), ranks_(ranks) {
+    : elements_(std::move(elements)),
+      targets_(targets),
+      target_rows_(rows),
+      ranks_(ranks),
+      segments_(static_cast<int>(targets_.rows()), ranks_) {
   if (rows.begin < 0 || rows.end < rows.begin || rows.end > targets.rows())
     throw std::invalid_argument("WallOperator: target rows [" + std::to_string(rows.begin) + ", " +
                                 std::to_string(rows.end) + ") of " + std::to_string(targets.rows()));
@@ -70,10 +80,7 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 }
 
 PointField WallOperator::apply(const PointField& f) {
-  if (near_and_real_) {
-    const OwnedSegments nodes(num_targets(), ranks_);
-    return to_field(nodes.gather(apply_mine(f, nodes)));
-  }
+  if (near_and_real_) return to_field(segments_.gather(apply_mine(f)));
   PointField u;
   const PointField density = elements_->weighted_density(f);
   const Eigen::Index first = target_rows_ ? target_rows_->begin : 0;  // of the near field's targets
@@ -100,11 +107,8 @@ PointField WallOperator::apply(const PointField& f) {
   return u;
 }
 
-Eigen::VectorXd WallOperator::apply_mine(const PointField& f, const OwnedSegments& nodes) {
-  if (!near_and_real_) return nodes.mine(to_vector(apply(f)));
-  const OwnedRange rows = owned_block(num_targets(), ranks_);  // of the assembled matrix
-  if (nodes.nodes().begin != rows.begin || nodes.nodes().end != rows.end)
-    throw std::invalid_argument("WallOperator::apply_mine: the segments are not the assembled rows' blocks");
+Eigen::VectorXd WallOperator::apply_mine(const PointField& f) {
+  if (!near_and_real_) return segments_.mine(to_vector(apply(f)));
   const bool distributed = ewald_->smooth().grid().distributed();
   // The smooth part: this rank's planes' share at every target on a split grid, else all of it
   // (the same on every rank).
@@ -117,7 +121,7 @@ Eigen::VectorXd WallOperator::apply_mine(const PointField& f, const OwnedSegment
   Eigen::VectorXd v = *near_and_real_ * to_vector(f);  // this rank's rows, zeros elsewhere
   v += to_vector(u);
   // Only a split grid's smooth part needs the other ranks' shares at this rank's rows.
-  return distributed ? nodes.sum_mine(v) : nodes.mine(v);
+  return distributed ? segments_.sum_mine(v) : segments_.mine(v);
 }
 
 void WallOperator::report_memory(MemoryReport& report, const std::string& prefix) const {

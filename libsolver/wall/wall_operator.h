@@ -49,11 +49,15 @@ class WallOperator {
   // the pairs the matrix holds; any bound meets the tolerance, a cutoff inside the near field's
   // reach included. The assembled blocks keep their entries in single precision when
   // `ewald_tolerance` is at least kSingleBlocksTolerance.
+  // `rows` (RealSpace::assembled): which rank assembles which targets' rows, over `ranks`;
+  // default the blocks of the targets in their order (owned_block). The wall solve passes the
+  // segments of its preconditioner's slabs (wall_node_segments, wall_preconditioner.h).
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
                RealSpace real_space = RealSpace::per_product, long chosen_for_targets = 0,
-               Communicator ranks = {}, const RealSpaceUse& assembled_use = kAssembledRealSpace);
+               Communicator ranks = {}, const RealSpaceUse& assembled_use = kAssembledRealSpace,
+               std::optional<OwnedSegments> rows = std::nullopt);
 
 
   // One rank's part of the operator at every target of a run's ranks (the cells' nodes): the
@@ -67,13 +71,14 @@ class WallOperator {
 
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);
-  // This rank's segment of apply(f) (as to_vector, parallel/owned_rows.h), for the targets split
-  // over `ranks` in the blocks of the assembled rows (an operator at the wall nodes; the wall
-  // solve's GMRES on split vectors): the ranks' parts are summed only where the smooth part is
-  // split over them, and only into each owner's segment. Without assembled rows: the segment
-  // of apply(f).
-  Eigen::VectorXd apply_mine(const PointField& f, const OwnedSegments& nodes);
+  // This rank's segment (segments()) of apply(f) (as to_vector, parallel/owned_rows.h): for an
+  // operator at the wall nodes with assembled rows (the wall solve's GMRES on split vectors),
+  // the ranks' parts are summed only where the smooth part is split over them, and only into
+  // each owner's segment. Without assembled rows: the segment of apply(f).
+  Eigen::VectorXd apply_mine(const PointField& f);
   const Communicator& ranks() const { return ranks_; }
+  // The targets split over the ranks: the assembled rows' segments, else blocks of the targets.
+  const OwnedSegments& segments() const { return segments_; }
 
   const WallElements& elements() const { return *elements_; }
   // With RealSpace::assembled the correction is part of the assembled rows and empty here.
@@ -96,6 +101,7 @@ class WallOperator {
   // fixed targets (the wall solve). Products change by rounding only.
   std::optional<SymmetricBlockMatrix> near_and_real_;  // this rank's rows
   Communicator ranks_;
+  OwnedSegments segments_;
   // ... and the SPME spreading of the Gauss points' densities as one matrix on the nodal
   // densities (SpmeStencils::spreading_matrix of WallElements::density_map).
   std::optional<SpmeStencils::SpreadingMatrix> node_spreading_;

@@ -14,23 +14,41 @@ int wall_preconditioner_blocks(long nodes, int block_nodes) {
   return nodes <= block_nodes ? 1 : static_cast<int>((nodes + block_nodes - 1) / block_nodes);
 }
 
+WallSlabs wall_slabs(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int block_nodes) {
+  const int n = static_cast<int>(nodes.rows());
+  const int blocks = wall_preconditioner_blocks(n, block_nodes);
+  WallSlabs s;
+  s.order.resize(n);
+  std::iota(s.order.begin(), s.order.end(), 0);
+  if (blocks > 1) {
+    Eigen::Index axis = 0;
+    (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff(&axis);
+    std::stable_sort(s.order.begin(), s.order.end(), [&](int a, int b) { return nodes(a, axis) < nodes(b, axis); });
+  }
+  for (int b = 0; b < blocks; ++b) s.first.push_back(owned_block(n, b, blocks).begin);
+  s.first.push_back(n);
+  return s;
+}
+
+OwnedSegments wall_node_segments(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int block_nodes,
+                                 const Communicator& ranks) {
+  if (ranks.size() == 1) return OwnedSegments(static_cast<int>(nodes.rows()), ranks);
+  WallSlabs s = wall_slabs(nodes, block_nodes);
+  const int blocks = static_cast<int>(s.first.size()) - 1;
+  std::vector<int> first;
+  for (int r = 0; r < ranks.size(); ++r) first.push_back(s.first[owned_block(blocks, r, ranks.size()).begin]);
+  first.push_back(static_cast<int>(nodes.rows()));
+  return OwnedSegments(std::move(s.order), first, ranks);
+}
+
 namespace {
 
-// block_of[i] for every node: the nodes sorted along the longest extent of their bounding box
-// (ties by index: the same order on every rank), cut into `blocks` runs of equal length.
-std::vector<int> slab_blocks(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int blocks) {
-  const int n = static_cast<int>(nodes.rows());
-  std::vector<int> block_of(n, 0);
-  if (blocks == 1) return block_of;
-  Eigen::Index axis = 0;
-  (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff(&axis);
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return nodes(a, axis) < nodes(b, axis); });
-  for (int b = 0; b < blocks; ++b) {
-    const OwnedRange run = owned_block(n, b, blocks);
-    for (int k = run.begin; k < run.end; ++k) block_of[order[k]] = b;
-  }
+// block_of[i] for every node: the runs of wall_slabs.
+std::vector<int> slab_blocks(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int block_nodes) {
+  const WallSlabs s = wall_slabs(nodes, block_nodes);
+  std::vector<int> block_of(nodes.rows(), 0);
+  for (std::size_t b = 0; b + 1 < s.first.size(); ++b)
+    for (int k = s.first[b]; k < s.first[b + 1]; ++k) block_of[s.order[k]] = static_cast<int>(b);
   return block_of;
 }
 
@@ -42,7 +60,7 @@ WallPreconditioner::WallPreconditioner(const Eigen::SparseMatrix<double>& local,
     : nodes_(static_cast<int>(nodes.rows())), blocks_(wall_preconditioner_blocks(nodes.rows(), block_nodes)), ranks_(ranks) {
   if (local.rows() != 3 * nodes.rows() || local.cols() != 3 * nodes.rows())
     throw std::invalid_argument("wall preconditioner: the local near field is not 3 n x 3 n for the n nodes");
-  const std::vector<int> block_of = slab_blocks(nodes, blocks_);
+  const std::vector<int> block_of = slab_blocks(nodes, block_nodes);
   const OwnedRange owned = owned_block(blocks_, ranks);
   // Each node's index in its block, and this rank's blocks' node lists (ascending: the order
   // of the whole matrix, so that one block is the whole local part unchanged).
@@ -90,6 +108,32 @@ Eigen::VectorXd WallPreconditioner::solve_mine(const Eigen::VectorXd& r, const O
     for (std::size_t a = 0; a < block.nodes.size(); ++a) z.segment<3>(3 * block.nodes[a]) = zb.segment<3>(3 * a);
   }
   return ranks_.size() == 1 ? z : segments.sum_mine(z);
+}
+
+bool WallPreconditioner::matches(const OwnedSegments& segments) const {
+  bool here = segments.total() == nodes_;
+  int held = 0;
+  for (const auto& b : mine_) {
+    held += static_cast<int>(b->nodes.size());
+    for (int i : b->nodes) here = here && segments.position(i) >= 0;
+  }
+  here = here && held == segments.size();
+  return SplitInnerProducts{ranks_}.all(here);
+}
+
+Eigen::VectorXd WallPreconditioner::solve_segment(const Eigen::VectorXd& r, const OwnedSegments& segments) const {
+  if (r.size() != 3 * static_cast<Eigen::Index>(segments.size()))
+    throw std::invalid_argument("wall preconditioner: not a vector of this rank's segment");
+  Eigen::VectorXd z(r.size());
+#pragma omp parallel for schedule(dynamic) if (mine_.size() > 1)
+  for (std::size_t k = 0; k < mine_.size(); ++k) {
+    const Block& block = *mine_[k];
+    Eigen::VectorXd rb(3 * block.nodes.size());
+    for (std::size_t a = 0; a < block.nodes.size(); ++a) rb.segment<3>(3 * a) = r.segment<3>(3 * segments.position(block.nodes[a]));
+    const Eigen::VectorXd zb = block.lu.solve(rb);
+    for (std::size_t a = 0; a < block.nodes.size(); ++a) z.segment<3>(3 * segments.position(block.nodes[a])) = zb.segment<3>(3 * a);
+  }
+  return z;
 }
 
 std::size_t WallPreconditioner::bytes() const {

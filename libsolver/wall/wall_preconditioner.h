@@ -34,6 +34,11 @@ class WallPreconditioner {
   // ranks' blocks' solutions summed into the owners' segments (each value comes from one
   // block, so the sum adds zeros: the same bits on any number of ranks).
   Eigen::VectorXd solve_mine(const Eigen::VectorXd& r, const OwnedSegments& segments) const;
+  // Whether every rank's segment holds exactly its blocks' nodes (wall_node_segments): then
+  // solve_segment needs no other rank. Collective.
+  bool matches(const OwnedSegments& segments) const;
+  // M^{-1} r for r and the result this rank's segment, for segments that match().
+  Eigen::VectorXd solve_segment(const Eigen::VectorXd& r, const OwnedSegments& segments) const;
 
   int blocks() const { return blocks_; }
   // L and U of this rank's blocks: a value and an index per nonzero.
@@ -52,5 +57,21 @@ class WallPreconditioner {
 
 // The blocks of n nodes: one when n <= block_nodes, else ceil(n / block_nodes).
 int wall_preconditioner_blocks(long nodes, int block_nodes);
+
+// The wall nodes in the preconditioner's slab order (along the longest extent of their bounding
+// box, ties by index), and where each block starts in it (blocks + 1 entries, the last n).
+struct WallSlabs {
+  std::vector<int> order;
+  std::vector<int> first;
+};
+WallSlabs wall_slabs(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int block_nodes);
+
+// The wall solve's node segments that match the preconditioner of `block_nodes`: each rank's
+// segment the nodes of its run of blocks (owned_block of the blocks), in slab order. Its
+// preconditioner then reads and writes only its own segment, and its rows of the assembled
+// operator are a slab of the wall. One rank: the nodes in their own order (one process's
+// vectors, bit for bit). A rank owns no nodes when there are fewer blocks than ranks.
+OwnedSegments wall_node_segments(const Eigen::Matrix<double, Eigen::Dynamic, 3>& nodes, int block_nodes,
+                                 const Communicator& ranks);
 
 }  // namespace rbcflow

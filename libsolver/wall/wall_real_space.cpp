@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -90,18 +91,36 @@ Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& e, const 
   return m;
 }
 
-SymmetricBlockMatrix wall_real_space_blocks(const WallElements& e, const NeighborList& pairs, double xi,
-                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, OwnedRange rows,
-                                            SymmetricBlockMatrix::Precision precision) {
+namespace {
+
+SymmetricBlockMatrix real_space_blocks(const WallElements& e, const NeighborList& pairs, double xi,
+                                       const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus,
+                                       const std::function<bool(int)>& mine, SymmetricBlockMatrix::Precision precision) {
   if (plus.rows() != 3 * static_cast<Eigen::Index>(pairs.n_targets()) || plus.cols() != 3 * e.num_nodes())
     throw std::invalid_argument("wall_real_space_blocks: the added matrix must be 3 targets x 3 nodes");
   const EwaldRealKernel kernel(xi);
   std::vector<RowScratch> scratch(omp_get_max_threads());
   return SymmetricBlockMatrix(pairs.n_targets(), e.num_nodes(), [&](int t, SymmetricBlockMatrix::Row& row) {
-    if (!rows.contains(t)) return;
+    if (!mine(t)) return;
     real_space_row(e, pairs, kernel, &plus, t, scratch[omp_get_thread_num()],
                    [&](int node, const Eigen::Matrix3d& b) { row.emplace_back(node, b); });
   }, precision);
+}
+
+}  // namespace
+
+SymmetricBlockMatrix wall_real_space_blocks(const WallElements& e, const NeighborList& pairs, double xi,
+                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, OwnedRange rows,
+                                            SymmetricBlockMatrix::Precision precision) {
+  return real_space_blocks(e, pairs, xi, plus, [&](int t) { return rows.contains(t); }, precision);
+}
+
+SymmetricBlockMatrix wall_real_space_blocks(const WallElements& e, const NeighborList& pairs, double xi,
+                                            const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus,
+                                            const OwnedSegments& rows, SymmetricBlockMatrix::Precision precision) {
+  if (rows.total() != pairs.n_targets())
+    throw std::invalid_argument("wall_real_space_blocks: the segments are not of the targets");
+  return real_space_blocks(e, pairs, xi, plus, [&](int t) { return rows.position(t) >= 0; }, precision);
 }
 
 }  // namespace rbcflow

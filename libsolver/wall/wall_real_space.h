@@ -7,6 +7,7 @@
 // one sparse product over nodes instead of a kernel evaluation per (target, Gauss point) pair.
 #include <Eigen/SparseCore>
 
+#include "libsolver/parallel/owned_rows.h"
 #include "libsolver/parallel/ownership.h"
 #include "libsolver/spme/ewald_parameters.h"
 #include "libsolver/spme/neighbor_list.h"
@@ -38,6 +39,11 @@ Eigen::SparseMatrix<double> wall_real_space_matrix(const WallElements& elements,
 SymmetricBlockMatrix wall_real_space_blocks(
     const WallElements& elements, const NeighborList& pairs, double xi,
     const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, OwnedRange rows,
+    SymmetricBlockMatrix::Precision precision = SymmetricBlockMatrix::Precision::double_entries);
+// The same for the targets of this rank's segment (the wall nodes of the wall solve).
+SymmetricBlockMatrix wall_real_space_blocks(
+    const WallElements& elements, const NeighborList& pairs, double xi,
+    const Eigen::SparseMatrix<double, Eigen::RowMajor>& plus, const OwnedSegments& rows,
     SymmetricBlockMatrix::Precision precision = SymmetricBlockMatrix::Precision::double_entries);
 
 }  // namespace rbcflow

@@ -20,21 +20,26 @@ const WallOperator& wall_targets(const WallOperator& op) {
 
 WallSolver::WallSolver(WallOperator op, const WallSolveOptions& options)
     : op_(std::move(op)),
-      preconditioner_(wall_targets(op_).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()) {
+      preconditioner_(wall_targets(op_).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()),
+      local_preconditioner_(preconditioner_.matches(op_.segments())) {
   op_.release_local_near_field();  // the factorisations keep their own copies
 }
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
                                const PointField& initial_guess) {
   // GMRES's vectors (the Krylov basis, the recycled space) are this rank's segment of the nodes
-  // (parallel/owned_rows.h); a product and the preconditioner gather the whole vector first
-  // (a product needs every node's density, a block of the preconditioner its nodes').
-  const OwnedSegments nodes(op_.num_targets(), op_.ranks());
+  // (parallel/owned_rows.h), those of its rows of the operator; a product gathers the whole
+  // vector first (it needs every node's density). The preconditioner reads and writes only the
+  // segment when the segments are its blocks' (wall_node_segments), else it gathers too.
+  const OwnedSegments& nodes = op_.segments();
   const Eigen::VectorXd b = nodes.mine((8.0 * std::numbers::pi * mu) * to_vector(velocity));
   Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? nodes.mine(to_vector(initial_guess))
                                                               : Eigen::VectorXd::Zero(b.size());
-  auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f)), nodes); };
-  auto M_inv = [&](const Eigen::VectorXd& r) { return preconditioner_.solve_mine(nodes.gather(r), nodes); };
+  auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f))); };
+  auto M_inv = [&](const Eigen::VectorXd& r) {
+    return local_preconditioner_ ? preconditioner_.solve_segment(r, nodes)
+                                 : preconditioner_.solve_mine(nodes.gather(r), nodes);
+  };
   WallSolution s;
   s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_,
                                  nullptr, SplitInnerProducts{op_.ranks()});

@@ -42,7 +42,9 @@ struct WallSolution {
 class WallSolver {
  public:
   // `op` must have the wall nodes as its targets; the preconditioner's blocks are of
-  // options.preconditioner_block_nodes nodes, shared by op.ranks().
+  // options.preconditioner_block_nodes nodes, shared by op.ranks(). Build `op` with the rows
+  // wall_node_segments(nodes, options.preconditioner_block_nodes, ranks) so that the
+  // preconditioner needs no other rank.
   explicit WallSolver(WallOperator op, const WallSolveOptions& options = {});
 
   // Throws std::runtime_error when GMRES stops unconverged. `initial_guess` (one row per node,
@@ -56,6 +58,9 @@ class WallSolver {
   std::vector<WallSolution> seed(const std::vector<PointField>& velocities, double mu, const WallSolveOptions& options);
   int recycled_directions() const { return recycled_.size(); }
   int preconditioner_blocks() const { return preconditioner_.blocks(); }
+  // Whether the operator's segments are the preconditioner's blocks' (wall_node_segments), so
+  // that applying it moves nothing between the ranks.
+  bool local_preconditioner() const { return local_preconditioner_; }
   // "wall operator: ...", "wall preconditioner (LU)" (this rank's blocks), "wall recycled
   // space" (memory_report.h).
   void report_memory(MemoryReport& report) const;
@@ -65,6 +70,7 @@ class WallSolver {
  private:
   WallOperator op_;
   WallPreconditioner preconditioner_;
+  bool local_preconditioner_;
   RecycledSpace recycled_;
 };
 

@@ -201,6 +201,37 @@ TEST(OwnedRows, SumsAndGathersByTheOwnersRows) {
   EXPECT_THROW(OwnedRows(2, 4, world).gather(Eigen::MatrixXd::Zero(3, 3)), std::invalid_argument);
 }
 
+// Node vectors split in an order of the nodes (a permutation, cut into the ranks' segments in
+// rank order): each rank's segment lists its nodes in that order, a sum reaches it as its
+// segment, a gather puts every node back in its place. Small integers: the sums are exact.
+TEST(OwnedSegments, OrderedSegmentsSumAndGather) {
+  const Communicator world = Communicator::world();
+  const int p = world.size(), n = 11;
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = (7 * k + 3) % n;  // 7 is prime to 11: a permutation
+  std::vector<int> first{0};
+  for (int r = 0; r < p; ++r) first.push_back(r + 1 == p ? n : std::min(n, first.back() + (r == 0 ? 0 : 5)));
+  const OwnedSegments segments(order, first, world);  // on 2 ranks and more, rank 0 holds none
+  ASSERT_EQ(segments.size(), first[world.rank() + 1] - first[world.rank()]);
+  Eigen::VectorXd all(3 * n);
+  for (Eigen::Index i = 0; i < all.size(); ++i) all[i] = static_cast<double>(i % 97);
+  const Eigen::VectorXd mine = segments.mine(all);
+  for (int k = 0; k < segments.size(); ++k) {
+    const int node = order[first[world.rank()] + k];
+    EXPECT_EQ(segments.node(k), node);
+    EXPECT_EQ(segments.position(node), k);
+    EXPECT_EQ(mine.segment<3>(3 * k), all.segment<3>(3 * node));
+  }
+  EXPECT_EQ(segments.gather(mine), all);
+  EXPECT_EQ(segments.sum_mine((world.rank() + 1) * all), (p * (p + 1) / 2) * mine);
+  std::vector<int> three(p, 0);
+  three.push_back(3);
+  EXPECT_THROW(OwnedSegments(std::vector<int>{0, 0, 1}, three, world), std::invalid_argument);  // not a permutation
+  EXPECT_NO_THROW(OwnedSegments(std::vector<int>{2, 0, 1}, three, world));
+  std::vector<int> short_first(first.begin(), first.end() - 1);
+  EXPECT_THROW(OwnedSegments(order, short_first, world), std::invalid_argument);
+}
+
 // The velocity of (10) solved with GMRES's vectors split by rows over the ranks (each rank its
 // cells' rows, inner products summed over the ranks): the same iterations as one rank, and the
 // same velocity to the rounding the products carry into the iterates, on every rank alike.
@@ -321,6 +352,52 @@ TEST(DistributedWall, PreconditionerBlocksSplitOverTheRanks) {
   if (world.size() > 1) {
     EXPECT_LT(lu_bytes(shared), lu_bytes(one));
   }
+}
+
+// The wall solve's segments cut along the preconditioner's slabs (wall_node_segments): each
+// rank's GMRES segment and assembled rows are its blocks' nodes, so the preconditioner reads
+// and writes only its own segment (no gather, no reduce-scatter). The same iterations and force
+// as one rank, the same bits on every rank; segments of the nodes' own blocks still solve,
+// gathering for the preconditioner.
+TEST(DistributedWall, SegmentsAlongThePreconditionerSlabs) {
+  const auto e = small_tube();
+  const PeriodicBox box(kTubeBox);
+  const auto assembled = WallOperator::RealSpace::assembled;
+  const Communicator world = Communicator::world();
+  WallSolveOptions options;
+  options.preconditioner_block_nodes = 40;
+  const PointField& x = e->wall.surface.points;
+  const OwnedSegments slabs = wall_node_segments(x, options.preconditioner_block_nodes, world);
+  WallSolver one(WallOperator(e, x, box, 1e-6, nullptr, assembled), options);
+  WallSolver sliced(WallOperator(e, x, box, 1e-6, nullptr, assembled, 0, world, kAssembledRealSpace, slabs), options);
+  WallSolver blocked(WallOperator(e, x, box, 1e-6, nullptr, assembled, 0, world), options);
+  EXPECT_TRUE(one.local_preconditioner());
+  EXPECT_TRUE(sliced.local_preconditioner());
+  EXPECT_EQ(blocked.local_preconditioner(), world.size() == 1);
+  // The segment is a slab: its nodes' coordinates along the wall's longest extent (the tube's
+  // axis, z) lie between the neighbouring ranks'.
+  if (world.size() > 1 && slabs.size() > 0) {
+    double lo = 1e300, hi = -1e300;
+    for (int k = 0; k < slabs.size(); ++k) {
+      lo = std::min(lo, x(slabs.node(k), 2));
+      hi = std::max(hi, x(slabs.node(k), 2));
+    }
+    for (long i = 0; i < x.rows(); ++i) {
+      if (slabs.position(static_cast<int>(i)) >= 0) continue;
+      EXPECT_TRUE(x(i, 2) <= lo || x(i, 2) >= hi) << i;
+    }
+  }
+  const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
+  const WallSolution a = one.solve(v, 1.0, options), b = sliced.solve(v, 1.0, options),
+                     c = blocked.solve(v, 1.0, options);
+  EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
+  EXPECT_EQ(c.gmres.iterations, a.gmres.iterations);
+  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  std::printf("  segments along %d slabs: wall force %.1e from one rank's, %d iterations\n",
+              sliced.preconditioner_blocks(), d, b.gmres.iterations);
+  // As SolveOnTheRanksEqualsOneRank; the inner products now sum the nodes in slab order.
+  EXPECT_LT(d, 1e-12);
+  EXPECT_EQ(spread_over_ranks(world, b.force), 0.0);
 }
 
 // More ranks than cells: a rank that owns none takes part in every product with nothing.
