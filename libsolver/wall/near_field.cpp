@@ -93,7 +93,7 @@ Eigen::Matrix<double, 3, 9> element_single_layer(const Eigen::Matrix3d& v, const
 }
 
 NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::Dynamic, 3>& targets,
-                     double near_factor, double preconditioner_factor) {
+                     double near_factor, double preconditioner_factor, const std::function<bool(int)>& rows) {
   using Triplet = Eigen::Triplet<double>;
   using Blocks = std::map<int, Eigen::Matrix3d>;  // node -> 3 x 3 block of one target's row
   const int nt = static_cast<int>(targets.rows());
@@ -114,6 +114,7 @@ NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::D
   for (int i = 0; i < nt; ++i) {
     const int thread = omp_get_thread_num();
     const Eigen::Vector3d x = targets.row(i).transpose();
+    const bool wanted = !rows || rows(i);
     Blocks cor, loc;
     std::vector<int> near_triangles;
     bins.candidates(x, near_triangles);
@@ -122,11 +123,12 @@ NearField near_field(const WallElements& e, const Eigen::Matrix<double, Eigen::D
       const Eigen::Vector3d r = minimum_image(c - x, e.wall.period);
       if (r.norm() >= near_factor * e.diameters[t]) continue;
       const Eigen::Matrix3d v = e.vertices[t].colwise() + (r - (c - x));  // the image next to x
-      const Eigen::Matrix<double, 3, 9> exact = element_single_layer(v, x);
       Eigen::Matrix<double, 3, 9> smooth = Eigen::Matrix<double, 3, 9>::Zero();
       int q = -1;
       add_rule(v, Eigen::Matrix3d::Identity(), x, gauss, e.areas[t], smooth, &q);
       if (q >= 0) coincident[thread].emplace_back(i, 7 * t + q);
+      if (!wanted) continue;
+      const Eigen::Matrix<double, 3, 9> exact = element_single_layer(v, x);
       const bool in_preconditioner = r.norm() < preconditioner_factor * e.diameters[t];
       for (int a = 0; a < 3; ++a) {
         const int node = e.wall.surface.triangles(t, a);

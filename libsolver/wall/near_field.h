@@ -7,6 +7,7 @@
 // periodic remainder G^per - G is smooth and left to the Gauss-7 far-field sum.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -26,8 +27,11 @@ struct NearField {
   std::vector<std::pair<int, int>> coincident;
 };
 
+// `rows` (when given): the targets whose rows are wanted; the others' rows stay empty (their
+// coincident pairs are still found, so that every rank snaps the same targets).
 NearField near_field(const WallElements& elements, const Eigen::Matrix<double, Eigen::Dynamic, 3>& targets,
-                     double near_factor = 3.0, double preconditioner_factor = 1.0);
+                     double near_factor = 3.0, double preconditioner_factor = 1.0,
+                     const std::function<bool(int)>& rows = {});
 
 // [M_0 M_1 M_2], M_a = int_T lambda_a(y) G(y - x) dS(y), for triangle vertices v (columns).
 Eigen::Matrix<double, 3, 9> element_single_layer(const Eigen::Matrix3d& v, const Eigen::Vector3d& x);

@@ -18,13 +18,28 @@ PointField wrapped(const PointField& x, const PeriodicBox& box) {
   return out;
 }
 
+// The near field's rows for an assembled operator whose rows are given, on more than one rank:
+// the rank's segment (the only rows its assembled matrix and preconditioner blocks read).
+std::function<bool(int)> at_rows_only(WallOperator::RealSpace real_space, const std::optional<OwnedSegments>& rows,
+                                      const Communicator& ranks, long targets) {
+  if (rows && rows->total() != targets)
+    throw std::invalid_argument("WallOperator: the rows' segments are not of the targets");
+  if (real_space != WallOperator::RealSpace::assembled || !rows || ranks.size() == 1) return {};
+  return [segments = *rows](int t) { return segments.position(t) >= 0; };
+}
+
 }  // namespace
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets)
+    : WallOperator(std::move(elements), targets, std::function<bool(int)>{}) {}
+
+WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
+                           const std::function<bool(int)>& rows)
     : elements_(std::move(elements)),
       targets_(targets),
-      near_(near_field(*elements_, targets_)),
-      segments_(static_cast<int>(targets_.rows()), ranks_) {
+      near_(near_field(*elements_, targets_, 3.0, 1.0, rows)),
+      segments_(static_cast<int>(targets_.rows()), ranks_),
+      near_at_rows_only_(static_cast<bool>(rows)) {
   for (const auto& [t, q] : near_.coincident) targets_.row(t) = elements_->points.row(q);
 }
 
@@ -32,11 +47,9 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                            const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache,
                            RealSpace real_space, long chosen_for_targets, Communicator ranks,
                            const RealSpaceUse& assembled_use, std::optional<OwnedSegments> rows)
-    : WallOperator(std::move(elements), targets) {
+    : WallOperator(std::move(elements), targets, at_rows_only(real_space, rows, ranks, targets.rows())) {
   ranks_ = ranks;
   segments_ = rows ? std::move(*rows) : OwnedSegments(num_targets(), ranks_);
-  if (segments_.total() != num_targets())
-    throw std::invalid_argument("WallOperator: the rows' segments are not of the targets");
   const long n = elements_->points.rows();
   const RealSpaceUse use = real_space == RealSpace::assembled ? assembled_use : RealSpaceUse{};
   const double tol = real_space == RealSpace::assembled ? kAssembledToleranceFactor * ewald_tolerance : ewald_tolerance;

@@ -6,6 +6,7 @@
 // A target at a Gauss point (a centroid; snapped onto it) skips that point's G(0); in a box it gets the regular
 // part of G^per - G there, the smooth term plus ewald_real_stokeslet_self (ewald_plan.h).
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -51,7 +52,9 @@ class WallOperator {
   // `ewald_tolerance` is at least kSingleBlocksTolerance.
   // `rows` (RealSpace::assembled): which rank assembles which targets' rows, over `ranks`;
   // default the blocks of the targets in their order (owned_block). The wall solve passes the
-  // segments of its preconditioner's slabs (wall_node_segments, wall_preconditioner.h).
+  // segments of its preconditioner's slabs (wall_node_segments, wall_preconditioner.h); with
+  // them given on more than one rank, each rank computes the near field at its rows only
+  // (near_at_rows_only()), which is all its assembled rows and preconditioner blocks read.
   enum class RealSpace { per_product, assembled };
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache = nullptr,
@@ -83,6 +86,8 @@ class WallOperator {
   const WallElements& elements() const { return *elements_; }
   // With RealSpace::assembled the correction is part of the assembled rows and empty here.
   const NearField& near() const { return near_; }
+  // Whether near() holds only the rows of this rank's segment (the other targets' are empty).
+  bool near_at_rows_only() const { return near_at_rows_only_; }
   // Frees near().local, for the wall solver once it holds its factorisation.
   void release_local_near_field() { near_.local = Eigen::SparseMatrix<double>(); }
   const PointField& targets() const { return targets_; }
@@ -91,6 +96,10 @@ class WallOperator {
   void report_memory(MemoryReport& report, const std::string& prefix) const;
 
  private:
+  // The near field at the targets `rows` selects (all when empty; near_field.h).
+  WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets,
+               const std::function<bool(int)>& rows);
+
   std::shared_ptr<const WallElements> elements_;
   PointField targets_;
   NearField near_;                    // at the targets, or at target_rows_ of them
@@ -102,6 +111,7 @@ class WallOperator {
   std::optional<SymmetricBlockMatrix> near_and_real_;  // this rank's rows
   Communicator ranks_;
   OwnedSegments segments_;
+  bool near_at_rows_only_ = false;
   // ... and the SPME spreading of the Gauss points' densities as one matrix on the nodal
   // densities (SpmeStencils::spreading_matrix of WallElements::density_map).
   std::optional<SpmeStencils::SpreadingMatrix> node_spreading_;

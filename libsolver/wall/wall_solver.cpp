@@ -10,9 +10,15 @@ namespace rbcflow {
 
 namespace {
 
-const WallOperator& wall_targets(const WallOperator& op) {
+const WallOperator& wall_targets(const WallOperator& op, const WallSolveOptions& options) {
   if (op.num_targets() != op.elements().num_nodes())
     throw std::invalid_argument("wall solver: the operator's targets must be the wall nodes");
+  // The preconditioner's blocks read the local near field at their nodes' rows.
+  if (op.near_at_rows_only() &&
+      !(op.segments() == wall_node_segments(op.targets(), options.preconditioner_block_nodes, op.ranks())))
+    throw std::invalid_argument(
+        "wall solver: the operator holds the near field at its rows only, and they are not the preconditioner's "
+        "slabs: build it with wall_node_segments of the same block size");
   return op;
 }
 
@@ -20,7 +26,7 @@ const WallOperator& wall_targets(const WallOperator& op) {
 
 WallSolver::WallSolver(WallOperator op, const WallSolveOptions& options)
     : op_(std::move(op)),
-      preconditioner_(wall_targets(op_).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()),
+      preconditioner_(wall_targets(op_, options).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()),
       local_preconditioner_(preconditioner_.matches(op_.segments())) {
   op_.release_local_near_field();  // the factorisations keep their own copies
 }

@@ -374,6 +374,20 @@ TEST(DistributedWall, SegmentsAlongThePreconditionerSlabs) {
   EXPECT_TRUE(one.local_preconditioner());
   EXPECT_TRUE(sliced.local_preconditioner());
   EXPECT_EQ(blocked.local_preconditioner(), world.size() == 1);
+  // Given the slabs on several ranks, each computes the near field at its own rows only; a
+  // solver whose blocks are other slabs would read rows it lacks, and refuses.
+  WallOperator rows_only(e, x, box, 1e-6, nullptr, assembled, 0, world, kAssembledRealSpace, slabs);
+  EXPECT_EQ(rows_only.near_at_rows_only(), world.size() > 1);
+  if (world.size() > 1) {
+    // The ranks' rows are disjoint: their local near fields add up to the whole one's.
+    const WallOperator whole(e, x, box, 1e-6, nullptr, assembled, 0, world);
+    const long nnz = rows_only.near().local.nonZeros();
+    EXPECT_LT(nnz, whole.near().local.nonZeros());
+    EXPECT_EQ(world.sum(nnz), static_cast<long>(whole.near().local.nonZeros()));
+    WallSolveOptions other = options;
+    other.preconditioner_block_nodes = 100;
+    EXPECT_THROW(WallSolver(std::move(rows_only), other), std::invalid_argument);
+  }
   // The segment is a slab: its nodes' coordinates along the wall's longest extent (the tube's
   // axis, z) lie between the neighbouring ranks'.
   if (world.size() > 1 && slabs.size() > 0) {
