@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "geometry/surface/reference_shapes.h"
@@ -51,6 +52,11 @@ double spread_over_ranks(const Communicator& ranks, const Eigen::MatrixXd& m) {
   return (m - root).cwiseAbs().maxCoeff();
 }
 
+// The largest difference of b's wall force from a's, relative to a's largest entry.
+double force_difference(const WallSolution& a, const WallSolution& b) {
+  return (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+}
+
 // A D = 3.2 tube in a 4 x 4 x 4 box, elements of 0.5: the wall of the wall tests.
 const Eigen::Vector3d kTubeBox(4.0, 4.0, 4.0);
 std::shared_ptr<const WallElements> small_tube() {
@@ -59,6 +65,14 @@ std::shared_ptr<const WallElements> small_tube() {
   spec.box = kTubeBox;
   spec.element_size = 0.5;
   return std::make_shared<const WallElements>(tube(spec));
+}
+
+// The wall solve's operator on the small tube's nodes (assembled real space, tolerance 1e-6),
+// its rows over `ranks` (default blocks of the nodes, or `rows`).
+WallOperator tube_wall_operator(const std::shared_ptr<const WallElements>& e, const Communicator& ranks = {},
+                                std::optional<OwnedSegments> rows = std::nullopt) {
+  return WallOperator(e, e->wall.surface.points, PeriodicBox(kTubeBox), 1e-6, nullptr,
+                      WallOperator::RealSpace::assembled, 0, ranks, kAssembledRealSpace, std::move(rows));
 }
 
 }  // namespace
@@ -277,11 +291,9 @@ TEST(DistributedLayers, CellVelocitySolveOnTheRanksEqualsOneRank) {
 // only its segment of the space.
 TEST(DistributedWall, RecycledSpaceOnTheRanksEqualsOneRank) {
   const auto e = small_tube();
-  const PeriodicBox box(kTubeBox);
-  const auto assembled = WallOperator::RealSpace::assembled;
   const Communicator world = Communicator::world();
-  WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled));
-  WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, world));
+  WallSolver one(tube_wall_operator(e));
+  WallSolver shared(tube_wall_operator(e, world));
   const long n = e->num_nodes();
   std::vector<PointField> seeds;
   for (int a = 0; a < 3; ++a) seeds.push_back(Eigen::RowVector3d::Unit(a).replicate(n, 1));
@@ -295,7 +307,7 @@ TEST(DistributedWall, RecycledSpaceOnTheRanksEqualsOneRank) {
   for (long i = 0; i < n; ++i) v.row(i) << 0.3 * std::sin(e->wall.surface.points(i, 2)), 0.1, 1.0;
   const WallSolution a = one.solve(v, 1.0, options), b = shared.solve(v, 1.0, options);
   EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
-  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  const double d = force_difference(a, b);
   std::printf("  recycled space of %d directions: wall force %.1e from one rank's, %d iterations\n",
               one.recycled_directions(), d, b.gmres.iterations);
   // The rounding of the products (~1e-16) enters the space at each of the seeds' iterations and
@@ -320,19 +332,17 @@ TEST(DistributedWall, RecycledSpaceOnTheRanksEqualsOneRank) {
 // held by one rank only, and together the ranks hold exactly one rank's LUs.
 TEST(DistributedWall, PreconditionerBlocksSplitOverTheRanks) {
   const auto e = small_tube();
-  const PeriodicBox box(kTubeBox);
-  const auto assembled = WallOperator::RealSpace::assembled;
   const Communicator world = Communicator::world();
   WallSolveOptions options;
   options.preconditioner_block_nodes = 40;
-  WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled), options);
-  WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, world), options);
+  WallSolver one(tube_wall_operator(e), options);
+  WallSolver shared(tube_wall_operator(e, world), options);
   ASSERT_GE(one.preconditioner_blocks(), 4);
   EXPECT_EQ(shared.preconditioner_blocks(), one.preconditioner_blocks());
   const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
   const WallSolution a = one.solve(v, 1.0, options), b = shared.solve(v, 1.0, options);
   EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
-  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  const double d = force_difference(a, b);
   std::printf("  %d preconditioner blocks: wall force %.1e from one rank's, %d iterations\n",
               shared.preconditioner_blocks(), d, b.gmres.iterations);
   // As SolveOnTheRanksEqualsOneRank: the preconditioner adds zeros to each value only.
@@ -361,26 +371,24 @@ TEST(DistributedWall, PreconditionerBlocksSplitOverTheRanks) {
 // gathering for the preconditioner.
 TEST(DistributedWall, SegmentsAlongThePreconditionerSlabs) {
   const auto e = small_tube();
-  const PeriodicBox box(kTubeBox);
-  const auto assembled = WallOperator::RealSpace::assembled;
   const Communicator world = Communicator::world();
   WallSolveOptions options;
   options.preconditioner_block_nodes = 40;
   const PointField& x = e->wall.surface.points;
   const OwnedSegments slabs = wall_node_segments(x, options.preconditioner_block_nodes, world);
-  WallSolver one(WallOperator(e, x, box, 1e-6, nullptr, assembled), options);
-  WallSolver sliced(WallOperator(e, x, box, 1e-6, nullptr, assembled, 0, world, kAssembledRealSpace, slabs), options);
-  WallSolver blocked(WallOperator(e, x, box, 1e-6, nullptr, assembled, 0, world), options);
+  WallSolver one(tube_wall_operator(e), options);
+  WallSolver sliced(tube_wall_operator(e, world, slabs), options);
+  WallSolver blocked(tube_wall_operator(e, world), options);
   EXPECT_TRUE(one.local_preconditioner());
   EXPECT_TRUE(sliced.local_preconditioner());
   EXPECT_EQ(blocked.local_preconditioner(), world.size() == 1);
   // Given the slabs on several ranks, each computes the near field at its own rows only; a
   // solver whose blocks are other slabs would read rows it lacks, and refuses.
-  WallOperator rows_only(e, x, box, 1e-6, nullptr, assembled, 0, world, kAssembledRealSpace, slabs);
+  WallOperator rows_only = tube_wall_operator(e, world, slabs);
   EXPECT_EQ(rows_only.near_at_rows_only(), world.size() > 1);
   if (world.size() > 1) {
     // The ranks' rows are disjoint: their local near fields add up to the whole one's.
-    const WallOperator whole(e, x, box, 1e-6, nullptr, assembled, 0, world);
+    const WallOperator whole = tube_wall_operator(e, world);
     const long nnz = rows_only.near().local.nonZeros();
     EXPECT_LT(nnz, whole.near().local.nonZeros());
     EXPECT_EQ(world.sum(nnz), static_cast<long>(whole.near().local.nonZeros()));
@@ -406,7 +414,7 @@ TEST(DistributedWall, SegmentsAlongThePreconditionerSlabs) {
                      c = blocked.solve(v, 1.0, options);
   EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
   EXPECT_EQ(c.gmres.iterations, a.gmres.iterations);
-  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  const double d = force_difference(a, b);
   std::printf("  segments along %d slabs: wall force %.1e from one rank's, %d iterations\n",
               sliced.preconditioner_blocks(), d, b.gmres.iterations);
   // As SolveOnTheRanksEqualsOneRank; the inner products now sum the nodes in slab order.
@@ -435,14 +443,12 @@ TEST(DistributedLayers, ARankWithoutCells) {
 // of the sum (the same bits in a build without FFTW's MPI library: the ranks' rows are disjoint).
 TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
   const auto e = small_tube();
-  const PeriodicBox box(kTubeBox);
-  const auto assembled = WallOperator::RealSpace::assembled;
-  WallSolver one(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled));
-  WallSolver shared(WallOperator(e, e->wall.surface.points, box, 1e-6, nullptr, assembled, 0, Communicator::world()));
+  WallSolver one(tube_wall_operator(e));
+  WallSolver shared(tube_wall_operator(e, Communicator::world()));
   const PointField v = Eigen::RowVector3d(0.1, 0.0, 1.0).replicate(e->num_nodes(), 1);
   const WallSolution a = one.solve(v, 1.0), b = shared.solve(v, 1.0);
   EXPECT_EQ(a.gmres.iterations, b.gmres.iterations);
-  const double d = (a.force - b.force).cwiseAbs().maxCoeff() / a.force.cwiseAbs().maxCoeff();
+  const double d = force_difference(a, b);
   std::printf("  wall force %.1e from one rank's, %d iterations\n", d, b.gmres.iterations);
   // Rounding of ~1e-16 per product, carried by GMRES (tolerance 1e-6) through its iterations.
   if (Communicator::world().size() > 1 && SlabFft::available()) {

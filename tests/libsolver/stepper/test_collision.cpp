@@ -51,6 +51,23 @@ double separation(const SHSurface& a, const SHSurface& b, const SHTransform& t,
 
 double volume(const SHSurface& s, const SHTransform& t) { return enclosed_volume(s.geometry(t)); }
 
+// A stepper of the cells `shapes` (Skalak membranes, E_S = 1, E_D = 10, bending 0.01; lambda =
+// 1, free space) with dt = 1e-3 and collision removal at kThreshold.
+CellStepper removal_stepper(const std::vector<SHSurface>& shapes, const std::shared_ptr<const CellGrids>& grids) {
+  std::vector<Cell> cells;
+  for (const SHSurface& shape : shapes) {
+    Cell c;
+    c.shape = shape;
+    c.membrane = std::make_shared<const Membrane>(c.shape, grids,
+                                                  MembraneParameters{make_membrane_law("skalak", 1.0, 10.0), 0.01});
+    cells.push_back(std::move(c));
+  }
+  CellStepperOptions o;
+  o.dt = 1e-3;
+  o.collision_threshold = kThreshold;
+  return CellStepper(cells, grids, o);
+}
+
 }  // namespace
 
 // Two unit spheres 0.01 apart: the shared push leaves the grid points of each at least h_s
@@ -151,25 +168,15 @@ TEST(Collision, BadArgumentsAreErrors) {
 TEST(Collision, StepReportsTheRemoval) {
   const int order = 8;
   auto grids = CellGrids::make(order, 2 * order);
-  std::vector<Cell> cells;
-  for (const double x : {0.0, 2.01}) {
-    Cell c;
-    c.shape = sphere_at({x, 0.0, 0.0}, order);
-    c.membrane = std::make_shared<const Membrane>(c.shape, grids,
-                                                  MembraneParameters{make_membrane_law("skalak", 1.0, 10.0), 0.01});
-    cells.push_back(std::move(c));
-  }
-  CellStepperOptions o;
-  o.dt = 1e-3;
-  o.collision_threshold = kThreshold;
-  CellStepper stepper(cells, grids, o);
+  CellStepper stepper = removal_stepper({sphere_at({0.0, 0.0, 0.0}, order), sphere_at({2.01, 0.0, 0.0}, order)}, grids);
+  const double dt = 1e-3;
   const FlowSolution flow = stepper.solve();
 
   std::vector<SHSurface> moved;
   const int np = static_cast<int>(flow.velocity.rows()) / 2;
   for (int c = 0; c < 2; ++c) {
-    moved.push_back(cells[c].shape);
-    moved.back().coeffs().values() += o.dt * grids->n_grid->analyze(flow.velocity.middleRows(c * np, np)).values();
+    moved.push_back(stepper.cells()[c].shape);
+    moved.back().coeffs().values() += dt * grids->n_grid->analyze(flow.velocity.middleRows(c * np, np)).values();
   }
   const CollisionReport expected =
       remove_collisions(moved, *grids->n_grid, Eigen::Vector3d::Zero(), nullptr, kThreshold);
@@ -226,19 +233,9 @@ TEST(Collision, CrossingSurfacesLeftAreAnError) {
     EXPECT_LT(r.min_separation, 0.0) << inner;
   }
   auto grids = CellGrids::make(order, 2 * order);
-  std::vector<Cell> cells;
-  for (const double scale : {1.0, 0.5}) {
-    Cell c;
-    c.shape = sphere_at({0, 0, 0}, order);
-    c.shape.coeffs().values() *= scale;
-    c.membrane = std::make_shared<const Membrane>(c.shape, grids,
-                                                  MembraneParameters{make_membrane_law("skalak", 1.0, 10.0), 0.01});
-    cells.push_back(std::move(c));
-  }
-  CellStepperOptions o;
-  o.dt = 1e-3;
-  o.collision_threshold = kThreshold;
-  CellStepper stepper(cells, grids, o);
+  SHSurface inner = sphere_at({0, 0, 0}, order);
+  inner.coeffs().values() *= 0.5;
+  CellStepper stepper = removal_stepper({sphere_at({0, 0, 0}, order), inner}, grids);
   try {
     stepper.advance(stepper.solve());
     ADD_FAILURE() << "no error";
