@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 
 constexpr double kDt = 1e-3;
 
-StepCase from_case(Case c, double memory_gib) {
-  c.time.dt = kDt;
+StepCase from_case(Case c, double memory_gib, bool fixed_dt = true) {
+  if (fixed_dt) c.time.dt = kDt;
   if (memory_gib > 0) c.solver.memory_gib = memory_gib;
   Scenario s = prepare_scenario(c);
   const double estimate = s.memory.total();
@@ -54,8 +54,11 @@ StepCase make_step_case(const std::string& name, double memory_gib) {
   // tubeK: data/cases/tube_27_cells.toml's D = 6 tube; wideK: tube_1000_cells.toml's D = 12.
   if (const int count = count_in(name, "tube")) return tube_cells("tube_27_cells.toml", 13.33, 27, count, memory_gib);
   if (const int count = count_in(name, "wide")) return tube_cells("tube_1000_cells.toml", 123.56, 1000, count, memory_gib);
+  // Any case file, with its own time step.
+  if (name.ends_with(".toml")) return from_case(read_case(name), memory_gib, false);
   throw std::invalid_argument("unknown case '" + name +
-                              "' (single, minicase, tubeK, wideK: K cells in the D = 6 or D = 12 tube, e.g. tube27)");
+                              "' (single, minicase, tubeK, wideK: K cells in the D = 6 or D = 12 tube, e.g. tube27; "
+                              "or a case file CASE.toml)");
 }
 
 }  // namespace rbcflow::bench
