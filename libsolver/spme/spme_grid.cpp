@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <complex>
 #include <mutex>
 #include <numbers>
@@ -26,12 +27,28 @@ void check_components(int components, const char* where) {
 }  // namespace
 
 SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, FftPlanning planning,
-                   const Communicator& ranks, std::shared_ptr<WorkArrayPool> work_arrays)
+                   const Communicator& ranks, std::shared_ptr<WorkArrayPool> work_arrays,
+                   std::optional<std::array<int, 3>> axes)
     : box_(box), parameters_(parameters), work_arrays_(std::move(work_arrays)) {
   validate(parameters, box);
-  const std::array<int, 3>& K = parameters.grid;
+  const bool split = ranks.size() > 1 && SlabFft::available();
+  if (axes) {
+    std::array<int, 3> sorted = *axes;
+    std::sort(sorted.begin(), sorted.end());
+    if (sorted != std::array<int, 3>{0, 1, 2})
+      throw std::invalid_argument("SpmeGrid: the grid's axes must be a permutation of 0, 1, 2, not " +
+                                  std::to_string((*axes)[0]) + ", " + std::to_string((*axes)[1]) + ", " +
+                                  std::to_string((*axes)[2]));
+    axes_ = *axes;
+  } else if (split) {
+    // The axis of the most grid points first (the first of equals), the others in their order.
+    const std::array<int, 3>& g = parameters.grid;
+    const int first = static_cast<int>(std::max_element(g.begin(), g.end()) - g.begin());
+    axes_ = {first, first == 0 ? 1 : 0, first == 2 ? 1 : 2};
+  }
+  const std::array<int, 3> K{size(0), size(1), size(2)};  // by grid direction
   flags_ = planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  if (ranks.size() > 1 && SlabFft::available()) slab_ = std::make_unique<SlabFft>(ranks, K, flags_, omp_get_max_threads());
+  if (split) slab_ = std::make_unique<SlabFft>(ranks, K, flags_, omp_get_max_threads());
 
   // Wavenumbers and B-spline moduli per direction; the Nyquist index gets k = 0 and is dropped.
   std::vector<double> modulus[3];
@@ -40,7 +57,7 @@ SpmeGrid::SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters, Ff
     wavenumber_[d].resize(n);
     for (int m = 0; m < n; ++m) {
       const int signed_m = m < K[d] / 2 ? m : (m == K[d] / 2 ? 0 : m - K[d]);
-      wavenumber_[d][m] = 2.0 * std::numbers::pi * signed_m / box.length(d);
+      wavenumber_[d][m] = 2.0 * std::numbers::pi * signed_m / box.length(axes_[d]);
     }
     modulus[d] = bspline_modulus(parameters.order, K[d]);
   }
@@ -82,7 +99,8 @@ const GridTransform& SpmeGrid::plan(LazyPlan& p, int components, bool forward, f
   std::call_once(p.made, [&] {
     FftwBuffer<fftw_complex> own(on ? 0 : components * complex_points());
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    p.transform = std::make_unique<GridTransform>(parameters_.grid, components, forward, flags_, on ? on : own.data());
+    p.transform = std::make_unique<GridTransform>(std::array<int, 3>{size(0), size(1), size(2)}, components, forward,
+                                                  flags_, on ? on : own.data());
   });
   return *p.transform;
 }
@@ -127,7 +145,7 @@ void SpmeGrid::apply_stokeslet(fftw_complex* spectrum) const {
   Complex* f = reinterpret_cast<Complex*>(spectrum);
   for_each_wavevector([&](std::size_t m, int i, int j, int l) {
     Complex* fm = f + 3 * m;
-    const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+    const auto [k0, k1, k2] = wavevector(i, j, l);
     const double k_squared = k0 * k0 + k1 * k1 + k2 * k2;
     const double s = k_squared == 0.0 ? 0.0 : influence(i, j, l, 1.0 / k_squared);
     if (s == 0.0) {
@@ -155,7 +173,7 @@ void SpmeGrid::apply_stresslet(int first, int count, const fftw_complex* part, f
     Complex d[6] = {zero, zero, zero, zero, zero, zero};
     for (int c = 0; c < count; ++c) d[first + c] = D[count * m + c];
     Complex* um = u + 3 * m;
-    const double k0 = wavenumber_[0][i], k1 = wavenumber_[1][j], k2 = wavenumber_[2][l];
+    const auto [k0, k1, k2] = wavevector(i, j, l);
     const double k_squared = k0 * k0 + k1 * k1 + k2 * k2;
     const double inv_k2 = k_squared == 0.0 ? 0.0 : 1.0 / k_squared;
     const double s = k_squared == 0.0 ? 0.0 : influence(i, j, l, inv_k2);

@@ -15,10 +15,18 @@
 // run with the OpenMP thread count current at construction. Each FFTW plan is made on its
 // first use, thread-safely.
 //
+// The grid's directions are box axes in an order, axis(0), axis(1), axis(2) (the array's
+// outermost direction first): the box's own order x, y, z unless asked otherwise, and on a
+// distributed grid the axis of the most grid points first, so that the slabs cut the box
+// along its longest side (a tube along z: slabs across the tube, each a length of it; as many
+// slabs as that axis has grid points). A relabelling of the axes changes only the order of
+// the sums' terms: the kernels are isotropic (their Fourier parts depend on k through k k^T
+// and |k|, taken in the box's axes).
+//
 // Split over ranks (a grid made with a Communicator of several ranks, in a build with FFTW's
 // MPI library: distributed()), each rank holds only its slab of the grid, planes
-// [first_plane(), first_plane() + planes()) of the first direction, and its block of the
-// spectrum, transposed
+// [first_plane(), first_plane() + planes()) of the first direction (box axis axis(0)), and
+// its block of the spectrum, transposed
 // (parallel/slab_fft.h). Spreading into the slab and interpolating from it then give each
 // rank its part of a product; the parts sum to the whole (operators/cell_layers.h). Its
 // transforms are collective: every rank makes the same products in the same order.
@@ -26,7 +34,9 @@
 
 #include <cstddef>
 #include <memory>
+#include <array>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "ewald_parameters.h"
@@ -50,17 +60,20 @@ class SpmeGrid {
   // Throws std::invalid_argument for invalid parameters (validate()).
   // ranks: split the grid over them when they are several and the build has FFTW's MPI
   // library (collective), else every rank holds the whole grid. work_arrays: where the work
-  // arrays come from and go back to (work_array_pool.h); without one each is freed.
+  // arrays come from and go back to (work_array_pool.h); without one each is freed. axes: the
+  // box axis of each grid direction (a permutation of 0, 1, 2), else the order above.
   SpmeGrid(const PeriodicBox& box, const EwaldParameters& parameters,
            FftPlanning planning = FftPlanning::estimate, const Communicator& ranks = {},
-           std::shared_ptr<WorkArrayPool> work_arrays = nullptr);
+           std::shared_ptr<WorkArrayPool> work_arrays = nullptr,
+           std::optional<std::array<int, 3>> axes = std::nullopt);
   ~SpmeGrid();
   SpmeGrid(const SpmeGrid&) = delete;
   SpmeGrid& operator=(const SpmeGrid&) = delete;
 
   const PeriodicBox& box() const { return box_; }
   const EwaldParameters& parameters() const { return parameters_; }
-  int size(int d) const { return parameters_.grid[d]; }
+  int axis(int d) const { return axes_[d]; }                   // box axis of grid direction d
+  int size(int d) const { return parameters_.grid[axes_[d]]; }  // grid points along direction d
   int order() const { return parameters_.order; }
   FftPlanning planning() const { return flags_ == FFTW_MEASURE ? FftPlanning::measure : FftPlanning::estimate; }
   std::size_t real_points() const;     // K1 K2 K3
@@ -106,7 +119,8 @@ class SpmeGrid {
  private:
   PeriodicBox box_;
   EwaldParameters parameters_;
-  std::vector<double> wavenumber_[3];  // k_d of index m_d (signed; 0 on the Nyquist plane)
+  std::array<int, 3> axes_{0, 1, 2};  // axis(d)
+  std::vector<double> wavenumber_[3];  // k along axis(d) of index m_d (signed; 0 on the Nyquist plane)
   std::vector<double> damping_[3];     // exp(-c k_d^2) / |Bd(m_d)|^2 (0 on the Nyquist plane)
   double damping_c_ = 0, scale_ = 0;   // c = 1/(4 xi^2); 8 pi / V
   // The influence 8 pi H(k)/(k^2 V |B|^2) of wavevector (i, j, l) with 1/k^2 = inv_k2 (k != 0):
@@ -114,6 +128,14 @@ class SpmeGrid {
   // moduli taken direction by direction.
   double influence(int i, int j, int l, double inv_k2) const {
     return scale_ * (inv_k2 + damping_c_) * damping_[0][i] * damping_[1][j] * damping_[2][l];
+  }
+  // The wavevector of indices (i, j, l) in the box's axes.
+  std::array<double, 3> wavevector(int i, int j, int l) const {
+    std::array<double, 3> k;
+    k[axes_[0]] = wavenumber_[0][i];
+    k[axes_[1]] = wavenumber_[1][j];
+    k[axes_[2]] = wavenumber_[2][l];
+    return k;
   }
   struct LazyPlan {
     std::once_flag made;

@@ -29,7 +29,7 @@ SpmeStencils::SpmeStencils(const SpmeGrid& grid, const PointField& points)
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d x = box.wrap(points.row(i).transpose());
     for (int d = 0; d < 3; ++d) {
-      const double u = x[d] * K_[d] / box.length(d);
+      const double u = x[grid.axis(d)] * K_[d] / box.length(grid.axis(d));
       const int cell = std::min(static_cast<int>(std::floor(u)), K_[d] - 1);
       double w[kMaxSplineOrder];
       bspline_weights(p_, u - cell, w);  // w[j] belongs to index cell - j

@@ -146,7 +146,8 @@ TEST(DistributedLayers, ProductsOnTheRanksEqualOneRank) {
 
 // The smooth part of the Ewald sums on a grid split in slabs: each rank spreads every source
 // into its planes and interpolates from them; the ranks' parts sum to the whole grid's product.
-// Stencils of order 6 cross the slabs' edges (7 planes each on 2 ranks) and the periodic seam.
+// The slabs are cut along z, the axis of most grid points (spme_grid.h). Stencils of order 6
+// cross the slabs' edges (8 planes each on 2 ranks) and the periodic seam.
 TEST(DistributedSpme, SlabPartsSumToTheWholeGrid) {
   const Communicator world = Communicator::world();
   const PeriodicBox box(Eigen::Vector3d(3.0, 2.5, 3.5));
@@ -159,7 +160,8 @@ TEST(DistributedSpme, SlabPartsSumToTheWholeGrid) {
   auto slab = std::make_shared<const SpmeGrid>(box, p, FftPlanning::estimate, world);
   EXPECT_EQ(slab->distributed(), world.size() > 1 && SlabFft::available());
   const long planes = slab->distributed() ? world.sum(static_cast<long>(slab->planes())) : slab->planes();
-  EXPECT_EQ(planes, 14);  // the slabs cover the grid
+  EXPECT_EQ(planes, slab->distributed() ? 16 : 14);  // the slabs cover the grid
+  EXPECT_EQ(slab->axis(0), slab->distributed() ? 2 : 0);
   const Eigen::Index ns = 300, nt = 200;
   PointField sources(ns, 3), targets(nt, 3), normals(ns, 3);
   for (Eigen::Index i = 0; i < ns; ++i) {
