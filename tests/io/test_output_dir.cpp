@@ -56,6 +56,7 @@ TEST(OutputDir, ARestartElsewhereCarriesTheTablesOfTheCheckpointsRun) {
   std::ofstream(base / "run" / "checkpoints" / "step_00000002.h5") << "h5";
   std::ofstream(base / "run" / "diagnostics.csv") << "step,time\n1,0.1\n2,0.2\n3,0.3\n";
   std::ofstream(base / "run" / "cells.csv") << "step,cell\n1,0\n";
+  std::ofstream(base / "run" / "branches.csv") << "step,branch\n1,0\n1,1\n";
   const fs::path checkpoint = base / "run" / "checkpoints" / "step_00000002.h5";
   const auto text = [](const fs::path& p) {
     std::ifstream in(p);
@@ -68,6 +69,7 @@ TEST(OutputDir, ARestartElsewhereCarriesTheTablesOfTheCheckpointsRun) {
   EXPECT_TRUE(fs::equivalent(*run, base / "run"));
   EXPECT_EQ(text(base / "new" / "diagnostics.csv"), "step,time\n1,0.1\n2,0.2\n3,0.3\n");
   EXPECT_EQ(text(base / "new" / "cells.csv"), "step,cell\n1,0\n");
+  EXPECT_EQ(text(base / "new" / "branches.csv"), "step,branch\n1,0\n1,1\n");
 
   std::ofstream(base / "new" / "diagnostics.csv") << "step,time\n1,0.1\n2,0.2\n";
   EXPECT_FALSE(carry_tables_from_checkpoint_run(checkpoint, base / "new").has_value());
