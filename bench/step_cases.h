@@ -15,8 +15,8 @@
 //   wideK:    data/cases/tube_1000_cells.toml (D = 12, h = 0.4, otherwise as tube27) with K
 //             cells in a period of 123.56 K / 1000 (e.g. wide125, wide512);
 //   CASE.toml: any case file, prepared as rbcflow run prepares it, with its own time step.
-// Membranes: Skalak with bending, the paper's parameters (35). dt = 1e-3 but for a case file (about the "auto"
-// step (37) of these cases; the cost of a step hardly depends on it).
+// Membranes: Skalak with bending, the paper's parameters (35). dt = 1e-3 (about the "auto"
+// step (37) of these cases; the cost of a step hardly depends on it); a case file keeps its own.
 #include <memory>
 #include <string>
 
