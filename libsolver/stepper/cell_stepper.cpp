@@ -380,8 +380,12 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     // Surfaces left crossing (each other or the wall) make the boundary integrals meaningless
     // and the run blows up some steps later: stop here, at the last checkpoint's state.
     if (!k.converged && k.min_separation < 0) {
+      const std::string where = k.closest_other < 0 ? "cell " + std::to_string(k.closest_cell) + " and the wall"
+                                                     : "cells " + std::to_string(k.closest_cell) + " and " +
+                                                           std::to_string(k.closest_other);
       throw std::runtime_error("collision removal left cell surfaces crossing after " + std::to_string(k.passes) +
-                               " passes (smallest separation " + std::to_string(k.min_separation) + ", h_s = " +
+                               " passes (smallest separation " + std::to_string(k.min_separation) + ", " + where +
+                               ", h_s = " +
                                std::to_string(options_.collision_threshold) + ")" + at_step(state_.steps + 1) +
                                ": the cells moved into each other (or the wall) faster than the removal separates "
                                "them; try a smaller time step");

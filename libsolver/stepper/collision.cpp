@@ -41,6 +41,7 @@ struct Pass {
   std::vector<char> moved;
   int cell_pairs = 0, wall_contacts = 0;
   double min_separation = std::numeric_limits<double>::infinity();
+  int closest_cell = -1, closest_other = -1;  // where min_separation was found (-1 other: the wall)
 };
 
 // Cell b's image at b + offset is near cell a; `pair` numbers the unordered pair (a, b, +-offset).
@@ -139,20 +140,30 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   for (int a = 0; a < n; ++a) contacts[a].resize(near[a].size());
   std::vector<char> wall_hit(n, 0);
   const double target = h_s * (1.0 + kOvershoot);
-  double min_separation = std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(dynamic) reduction(min : min_separation)
+  // Each cell's smallest separation and what it is from (a cell, or -1: the wall).
+  std::vector<double> cell_min(n, std::numeric_limits<double>::infinity());
+  std::vector<int> cell_min_other(n, -1);
+#pragma omp parallel for schedule(dynamic)
   for (int a = 0; a < n; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       const Neighbour& nb = near[a][k];
+      double separation = std::numeric_limits<double>::infinity();
       contacts[a][k] = contacts_with_cell(views[a], views[nb.b], cells[nb.b].coeffs(), nb.offset, t.grid(), h_s,
-                                          min_separation);
+                                          separation);
+      if (separation < cell_min[a]) {
+        cell_min[a] = separation;
+        cell_min_other[a] = nb.b;
+      }
     }
     // The wall does not move: a point within h_s of it takes the whole push, along the wall
     // normal into the lumen.
     if (!wall || wall->closest(views[a].centre).signed_distance >= views[a].radius + 2.0 * h_s) continue;
     for (int p = 0; p < views[a].points.rows(); ++p) {
       const WallDistance::Query w = wall->closest(views[a].points.row(p).transpose());
-      min_separation = std::min(min_separation, w.signed_distance);
+      if (w.signed_distance < cell_min[a]) {
+        cell_min[a] = w.signed_distance;
+        cell_min_other[a] = -1;
+      }
       if (w.signed_distance < h_s) {
         pass.push[a].row(p) += (target - w.signed_distance) * w.normal.transpose();
         wall_hit[a] = 1;
@@ -188,7 +199,13 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       pair_hit[pair] = 1;
     }
   }
-  pass.min_separation = min_separation;
+  for (int a = 0; a < n; ++a) {
+    if (cell_min[a] < pass.min_separation) {
+      pass.min_separation = cell_min[a];
+      pass.closest_cell = a;
+      pass.closest_other = cell_min_other[a];
+    }
+  }
   pass.cell_pairs = static_cast<int>(std::count(pair_hit.begin(), pair_hit.end(), 1));
   pass.wall_contacts = static_cast<int>(std::count(wall_hit.begin(), wall_hit.end(), 1));
   return pass;
@@ -253,6 +270,8 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
       report.max_overlap = std::max(0.0, threshold - pass.min_separation);
     }
     report.min_separation = pass.min_separation;
+    report.closest_cell = pass.closest_cell;
+    report.closest_other = pass.closest_other;
     const bool any = std::find(pass.moved.begin(), pass.moved.end(), 1) != pass.moved.end();
     if (!any) break;
     if (pass_index == max_iterations) {

@@ -33,6 +33,8 @@ struct CollisionReport {
   double max_displacement = 0.0;  // largest displacement of a grid point, all passes together
   double min_separation = 0.0;    // smallest point-surface separation after the removal (cells
                                   // and wall; +infinity when nothing came within 2 h_s)
+  int closest_cell = -1;          // the cell of a point at min_separation (-1: none), and the
+  int closest_other = -1;         // cell or wall (-1) it is that close to
   int passes = 0;                 // detection passes that moved something
   bool converged = true;          // no point closer than h_s after the last pass
 };

@@ -220,8 +220,8 @@ TEST(Collision, TipAgainstAFaceTakesTheLargerShare) {
 
 // A cell inside another (concentric unit spheres, the inner one scaled by 0.5-0.98): each
 // push moves the inner surface through the outer one and back, and 20 passes leave them
-// crossing. The removal says so, and the stepper stops with a message naming the step rather
-// than carry crossing surfaces into the next solve.
+// crossing. The removal says so, and the stepper stops with a message naming the step and the
+// two cells rather than carry crossing surfaces into the next solve.
 TEST(Collision, CrossingSurfacesLeftAreAnError) {
   const int order = 8;
   const SHTransform t = SHTransform::gauss(order);
@@ -231,6 +231,9 @@ TEST(Collision, CrossingSurfacesLeftAreAnError) {
     const CollisionReport r = remove_collisions(cells, t, Eigen::Vector3d::Zero(), nullptr, kThreshold);
     EXPECT_FALSE(r.converged) << inner;
     EXPECT_LT(r.min_separation, 0.0) << inner;
+    // The two cells are the only pair: the report names them (either way round).
+    EXPECT_EQ(r.closest_cell + r.closest_other, 1) << inner;
+    EXPECT_NE(r.closest_cell, r.closest_other) << inner;
   }
   auto grids = CellGrids::make(order, 2 * order);
   SHSurface inner = sphere_at({0, 0, 0}, order);
@@ -243,5 +246,8 @@ TEST(Collision, CrossingSurfacesLeftAreAnError) {
     EXPECT_NE(std::string(e.what()).find("collision removal left cell surfaces crossing"), std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("step 1"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("cells 0 and 1") != std::string::npos || what.find("cells 1 and 0") != std::string::npos)
+        << what;
   }
 }
