@@ -144,7 +144,8 @@ Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* cas
     if (case_fingerprint && fingerprint != *case_fingerprint) {
       throw CheckpointError(where + " was written for another case (case fingerprint " + fingerprint +
                             ", this case " + *case_fingerprint +
-                            "); restart with the case.toml of its output directory");
+                            "); restart with the case.toml of its output directory, changed at most in the discretisation "
+                            "(cells.order, cells.dealias, time.dt, time.dt_safety)");
     }
     for (const std::string& name : h5::all_datasets(f.get())) {
       const h5::DatasetInfo info = h5::dataset_info(f.get(), name);

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -78,7 +79,8 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
 }
 
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
-  const Checkpoint k = Checkpoint::read(file, case_fingerprint(c));
+  const Case run = as_run_of_checkpoint(c, file);
+  const Checkpoint k = Checkpoint::read(file, case_fingerprint(run));
   const long long version = k.has("state_version") ? k.integer("state_version") : 1;
   if (version < 1 || version > kCheckpointStateVersion) {
     throw CheckpointError(file.string() + ": checkpoint state version " + std::to_string(version) +
@@ -87,7 +89,11 @@ void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem:
   }
   CheckpointIn in(k);
   try {
-    stepper.load(in);
+    if (rediscretised_keys(run, c).empty()) {
+      stepper.load(in);
+    } else {
+      stepper.load_rediscretised(in);
+    }
   } catch (const std::invalid_argument& e) {
     throw CheckpointError(file.string() + ": " + e.what());
   }
@@ -101,6 +107,41 @@ Case case_of_checkpoint(const std::filesystem::path& file) {
   }
   throw CheckpointError(file.string() + ": holds no case, and is not in a run's checkpoints/ folder beside its "
                         "case.toml");
+}
+
+Case as_run_of_checkpoint(const Case& c, const std::filesystem::path& file) {
+  Case run = c;
+  try {
+    const Case before = case_of_checkpoint(file);
+    if (run.cells && before.cells) {
+      run.cells->order = before.cells->order;
+      run.cells->dealias = before.cells->dealias;
+    }
+    run.time.dt = before.time.dt;
+    run.time.dt_safety = before.time.dt_safety;
+  } catch (const std::exception&) {
+    return c;  // no case to read: the fingerprint check names the file
+  }
+  return run;
+}
+
+std::vector<std::string> rediscretised_keys(const Case& run, const Case& c) {
+  std::vector<std::string> changed;
+  const auto note = [&](const std::string& key, const std::string& before, const std::string& now) {
+    if (before != now) changed.push_back(key + " " + before + " -> " + now);
+  };
+  const auto number = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return std::string(buf);
+  };
+  if (run.cells && c.cells) {
+    note("cells.order", std::to_string(run.cells->order), std::to_string(c.cells->order));
+    note("cells.dealias", std::to_string(run.cells->dealias), std::to_string(c.cells->dealias));
+  }
+  note("time.dt", run.time.dt ? number(*run.time.dt) : "\"auto\"", c.time.dt ? number(*c.time.dt) : "\"auto\"");
+  if (!run.time.dt && !c.time.dt) note("time.dt_safety", number(run.time.dt_safety), number(c.time.dt_safety));
+  return changed;
 }
 
 }  // namespace rbcflow

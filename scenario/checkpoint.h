@@ -5,6 +5,8 @@
 // reference shapes, which nothing read, and adds `case`, the case as run (case.toml's text),
 // so that a checkpoint alone can be continued (case_of_checkpoint).
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "io/case.h"
 #include "io/checkpoint.h"
@@ -22,8 +24,19 @@ inline constexpr long kCheckpointStateVersion = 2;
 void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file,
                       const Communicator& ranks = {});
 // Reads a checkpoint of this case into the stepper; throws CheckpointError (exit 2) naming the
-// file when it does not fit the case or has a format this build does not read.
+// file when it does not fit the case or has a format this build does not read. The case may
+// discretise the checkpoint's run otherwise (rediscretised_keys): its cells are then resampled
+// to the case's order and the velocity history starts afresh (CellStepper::load_rediscretised).
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);
+// A restart continues the same physics and may change only its discretisation: the cells'
+// order and de-aliasing (cells.order, cells.dealias) and the time step (time.dt,
+// time.dt_safety). `c` with those keys set to the checkpoint's run's (the case it holds, or its
+// run's case.toml); `c` itself where the checkpoint's case cannot be read, so that the
+// fingerprint then decides alone. Throws nothing of its own.
+Case as_run_of_checkpoint(const Case& c, const std::filesystem::path& file);
+// The rediscretised keys whose values differ between `c` and `run`, as "key old -> new"; empty
+// for a restart of the same discretisation.
+std::vector<std::string> rediscretised_keys(const Case& run, const Case& c);
 // The case a checkpoint was written for: its `case` item, or, for a checkpoint without one,
 // the case.toml of the run that wrote it (RUN/checkpoints/step_N.h5). Throws CheckpointError
 // naming the file when neither is there.

@@ -185,7 +185,16 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   r.request = std::move(request);
   const Case& c = r.request.c;
   const bool quiet = r.request.quiet;
-  r.scenario = prepare_scenario(c);
+  // A restart may change the discretisation (checkpoint.h): its cells are placed as the
+  // checkpoint's run placed them, at that run's order.
+  std::vector<std::string> rediscretised;
+  std::optional<int> placed_at_order;
+  if (!r.request.restart.empty()) {
+    const Case run = as_run_of_checkpoint(c, r.request.restart);
+    rediscretised = rediscretised_keys(run, c);
+    if (run.cells) placed_at_order = run.cells->order;
+  }
+  r.scenario = prepare_scenario(c, std::nullopt, placed_at_order);
   r.stepper = make_stepper(r.scenario);
   CellStepper& stepper = *r.stepper;
   if (!r.request.restart.empty()) {
@@ -201,6 +210,12 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
                 stepper.cells().size(), stepper.dt(), c.time.dt ? "" : " (auto: dt_safety x the limit of (37))", r.first,
                 r.last, c.output.dir.c_str());
     std::printf("parallel: %s\n", ranks_and_threads(r.ranks.size(), omp_get_max_threads()).c_str());
+    if (!rediscretised.empty()) {
+      std::string changes;
+      for (const std::string& k : rediscretised) changes += (changes.empty() ? "" : ", ") + k;
+      std::printf("restart at another discretisation: %s (shapes resampled, step history started afresh)\n",
+                  changes.c_str());
+    }
     if (r.scenario.placement_note) std::printf("%s\n", r.scenario.placement_note->c_str());
     if (const std::optional<double> U = r.scenario.options.tube_velocity) {
       const Eigen::Vector3d& u = stepper.mean_velocity();

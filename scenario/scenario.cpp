@@ -120,7 +120,7 @@ std::vector<EwaldSum> ewald_sums(const Case& c, long cell_nodes, long wall_nodes
 
 }  // namespace
 
-Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
+Scenario prepare_scenario(const Case& c, std::optional<int> planned, std::optional<int> placed_at_order) {
   refuse_ewald_overrides(c);
   Scenario s;
   s.c = c;
@@ -146,13 +146,21 @@ Scenario prepare_scenario(const Case& c, std::optional<int> planned) {
   }
   const CaseCells& k = *c.cells;
   s.grids = CellGrids::make(k.order, k.dealias * k.order);
-  InitialCells placed = initial_cells(c, s.vessel ? &*s.vessel : nullptr);
+  const int placement_order = placed_at_order.value_or(k.order);
+  Case placed_case = c;
+  placed_case.cells->order = placement_order;
+  InitialCells placed = initial_cells(placed_case, s.vessel ? &*s.vessel : nullptr);
+  for (std::vector<SHSurface>* shapes : {&placed.rest, &placed.initial}) {
+    for (SHSurface& shape : *shapes) shape.coeffs() = shape.coeffs().resampled(k.order);
+  }
   s.placement_note = placed.note;
   const std::shared_ptr<const MembraneLaw> law =
       make_membrane_law(to_string(k.membrane.law), k.membrane.shear_modulus, k.membrane.dilatation_modulus);
   // The rest shapes are rigid motions of one reference shape (cell_layout.h): one set of rest
   // metrics serves every membrane.
-  const auto rest = std::make_shared<const RestMetrics>(reference_shape(k, k.order), *s.grids);
+  SHSurface reference = reference_shape(k, placement_order);
+  reference.coeffs() = reference.coeffs().resampled(k.order);
+  const auto rest = std::make_shared<const RestMetrics>(reference, *s.grids);
   double cells_volume = 0;
   for (std::size_t i = 0; i < placed.rest.size(); ++i) {
     Cell cell;

@@ -50,7 +50,11 @@ struct Scenario {
 // Throws CaseError (exit 2) naming the key for everything that shows only once the vessel is
 // meshed or the cells placed, and for a run that cannot fit its memory budget: that of the
 // run's ranks (mpirun), or of `planned` ranks on this machine (`rbcflow check --ranks P`).
-Scenario prepare_scenario(const Case& c, std::optional<int> planned = std::nullopt);
+// `placed_at_order`: the cells are placed (and their rest shapes made) at that order and
+// resampled to cells.order, as for a restart from a run of that order (checkpoint.h): the
+// same cells and the same rest shapes as that run's.
+Scenario prepare_scenario(const Case& c, std::optional<int> planned = std::nullopt,
+                          std::optional<int> placed_at_order = std::nullopt);
 
 // The stepper of a prepared scenario (its cells are moved into it): the wall's boundary
 // elements are built here, and a tube-velocity drive's cell-free wall solve.

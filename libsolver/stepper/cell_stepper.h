@@ -153,6 +153,12 @@ class CellStepper {
   // restart checks against the vessel as meshed then; load() throws as restore() does.
   void save(StateArchive& a) const;
   void load(StateArchive& a);
+  // load() of a state discretised otherwise (another order of the cells or another time
+  // step): the shapes are resampled to this stepper's order (zero-padded or truncated
+  // coefficients: the same surface, to the truncation) and the velocity history is dropped, so
+  // that the first step is forward Euler (11) as a run's first is; the wall's force history
+  // stays as the wall solve's guess.
+  void load_rediscretised(StateArchive& a);
 
  private:
   void archive_wall(StateArchive& a) const;

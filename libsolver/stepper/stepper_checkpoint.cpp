@@ -75,4 +75,15 @@ void CellStepper::load(StateArchive& a) {
   restore(s);
 }
 
+void CellStepper::load_rediscretised(StateArchive& a) {
+  StepperState s;
+  s.archive(a);
+  archive_wall(a);
+  if (s.shapes.size() == cells_.size()) {
+    for (std::size_t c = 0; c < cells_.size(); ++c) s.shapes[c] = s.shapes[c].resampled(cells_[c].shape.order());
+  }
+  for (Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity}) u->resize(0, 0);
+  restore(s);
+}
+
 }  // namespace rbcflow

@@ -124,3 +124,80 @@ TEST(ScenarioCheckpoint, ACheckpointOfAnotherCellCountIsRefusedNamingTheFile) {
   const std::string e = refusal(w, file);
   EXPECT_NE(e.find(file.string() + ": restore: the state has 0 cells, the run 1"), std::string::npos) << e;
 }
+
+namespace {
+
+// A red cell at rest in free-space shear at order `order`, time step `dt`; `shear_modulus` to
+// make another case.
+Case resting_cell(int order, double dt, double shear_modulus = 10.0) {
+  return parse_case("[domain]\nkind = \"free\"\nbackground_flow = { kind = \"shear\", rate = 1.0 }\n"
+                    "viscosity_ratio = 5.0\n[cells]\nshape = \"rbc\"\npositions = [[0.0, 0.0, 0.0]]\norder = " +
+                        std::to_string(order) + "\ndealias = 2\n[cells.membrane]\nlaw = \"skalak\"\nshear_modulus = " +
+                        std::to_string(shear_modulus) + "\ndilatation_modulus = 100.0\nbending_modulus = 0.0\n"
+                        "[time]\nend = 1.0\ndt = " + std::to_string(dt) + "\ncollision_threshold = 0.0\n",
+                    "resting.toml");
+}
+
+// The largest membrane traction on the cells of `s` (the background flow does not enter it).
+double largest_traction(CellStepper& s) { return s.solve().traction.rowwise().norm().maxCoeff(); }
+
+}  // namespace
+
+// A restart may refine the cells (cells.order) and change the time step: the shapes are the
+// checkpoint's coefficients zero-padded, the rest shapes those of the checkpoint's run
+// resampled alike, so a cell at rest stays at rest to rounding: its membrane traction at
+// order 12 is below 1e-10 of the shear modulus.
+TEST(ScenarioCheckpoint, ARestartMayRefineTheCellsAndTheTimeStep) {
+  const Case coarse = resting_cell(8, 0.01);
+  Scenario s8 = prepare_scenario(coarse);
+  const auto run = make_stepper(s8);
+  const fs::path file = temp_file("checkpoint_refined.h5");
+  write_checkpoint(*run, coarse, file);
+
+  const Case fine = resting_cell(12, 0.005);
+  EXPECT_EQ(as_run_of_checkpoint(fine, file).cells->order, 8);
+  EXPECT_EQ(*as_run_of_checkpoint(fine, file).time.dt, 0.01);
+  EXPECT_EQ(rediscretised_keys(coarse, fine), (std::vector<std::string>{"cells.order 8 -> 12", "time.dt 0.01 -> 0.005"}));
+  EXPECT_TRUE(rediscretised_keys(coarse, coarse).empty());
+  Scenario s12 = prepare_scenario(fine, std::nullopt, 8);
+  const auto restarted = make_stepper(s12);
+  read_checkpoint(*restarted, fine, file);
+  const SHCoeffs padded = run->cells()[0].shape.coeffs().resampled(12);
+  EXPECT_EQ(restarted->cells()[0].shape.coeffs().values(), padded.values());
+  EXPECT_EQ(restarted->dt(), 0.005);
+  const double shear_modulus = 10.0;
+  EXPECT_LT(largest_traction(*restarted), 1e-10 * shear_modulus);
+
+  // A step at order 12 goes on from there; another physics is still refused.
+  EXPECT_NO_THROW(restarted->step());
+  Scenario other_case = prepare_scenario(resting_cell(12, 0.005, 20.0), std::nullopt, 8);
+  const auto other = make_stepper(other_case);
+  try {
+    read_checkpoint(*other, resting_cell(12, 0.005, 20.0), file);
+    ADD_FAILURE() << "a checkpoint of another shear modulus was read";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("was written for another case"), std::string::npos) << e.what();
+  }
+  fs::remove(file);
+}
+
+// At the same order and another time step the shapes read back bit for bit and the velocity
+// history is dropped (its first step is forward Euler, as a run's first is).
+TEST(ScenarioCheckpoint, ARestartAtAnotherTimeStepStartsItsHistoryAfresh) {
+  const auto run_owner = fresh_stepper();
+  CellStepper& run = *run_owner;
+  for (int i = 0; i < 3; ++i) run.step();
+  const fs::path file = temp_file("checkpoint_new_dt.h5");
+  write_checkpoint(run, kCase, file);
+  Case halved = kCase;
+  halved.time.dt = 0.005;
+  Scenario s = prepare_scenario(halved);
+  const auto restarted = make_stepper(s);
+  read_checkpoint(*restarted, halved, file);
+  EXPECT_EQ(restarted->state().shapes[0].values(), run.state().shapes[0].values());
+  EXPECT_EQ(restarted->state().steps, 3);
+  EXPECT_EQ(restarted->state().previous_velocity.size(), 0);
+  EXPECT_EQ(restarted->state().oldest_velocity.size(), 0);
+  EXPECT_EQ(restarted->dt(), 0.005);
+  fs::remove(file);
+}
