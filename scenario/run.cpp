@@ -173,7 +173,9 @@ struct Run::State {
       f();
     } catch (const std::exception& e) {
       std::string message = e.what();
-      message.append(last_checkpoint ? "; the last good checkpoint is " + last_checkpoint->string()
+      message.append(last_checkpoint ? "; the last good checkpoint is " + last_checkpoint->string() +
+                                           " (a restart from it may change time.dt, time.dt_safety, cells.order "
+                                           "and cells.dealias)"
                                      : "; no checkpoint was written");
       throw std::runtime_error(message);
     }

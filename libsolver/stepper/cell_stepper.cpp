@@ -388,7 +388,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
                                ", h_s = " +
                                std::to_string(options_.collision_threshold) + ")" + at_step(state_.steps + 1) +
                                ": the cells moved into each other (or the wall) faster than the removal separates "
-                               "them; try a smaller time step");
+                               "them; try a smaller time step or a higher order of the cells");
     }
     for (int c = 0; c < nc; ++c) cells_[c].shape = std::move(shapes[c]);
     report.collision_pairs = k.cell_pairs;
