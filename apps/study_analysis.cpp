@@ -96,25 +96,34 @@ PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, do
   PhaseSeparationPoint p;
   p.to_time = std::strtod(table.rows.back()[time].c_str(), nullptr);
   p.from_time = steady_fraction * p.to_time;
-  std::array<double, 3> flow_sum{};
+  // Time means: a row's flow holds over its step, from the branch's row before it (a restart
+  // may have changed the time step, docs/running.md); a row exactly at the window's start
+  // weighs nothing.
+  std::array<double, 3> flow_sum{}, weight_sum{}, previous{};
   std::array<long, 3> rows{}, before{}, last{};  // passages: the count before the window, and at its end
   for (const auto& row : table.rows) {
     const long b = std::strtol(row[branch].c_str(), nullptr, 10);
     if (b < 0 || b > 2) throw std::runtime_error(csv.string() + ": branch " + row[branch] + " (a bifurcation has 0, 1, 2)");
     const long n = std::strtol(row[passed].c_str(), nullptr, 10);
-    if (std::strtod(row[time].c_str(), nullptr) < p.from_time) {
+    const double t = std::strtod(row[time].c_str(), nullptr);
+    if (t < p.from_time) {
       before[b] = n;
+      previous[b] = t;
       continue;
     }
     last[b] = n;
-    flow_sum[b] += std::strtod(row[flow].c_str(), nullptr);
+    const double w = t - std::max(previous[b], p.from_time);
+    flow_sum[b] += w * std::strtod(row[flow].c_str(), nullptr);
+    weight_sum[b] += w;
+    previous[b] = t;
     ++rows[b];
   }
   for (int b = 0; b < 3; ++b)
-    if (rows[b] == 0) throw std::runtime_error(csv.string() + ": no rows of branch " + std::to_string(b) + " in the steady part");
-  p.parent_flow = flow_sum[0] / rows[0];
-  p.alpha_flow = flow_sum[1] / rows[1];
-  p.beta_flow = flow_sum[2] / rows[2];
+    if (rows[b] == 0 || weight_sum[b] <= 0)
+      throw std::runtime_error(csv.string() + ": no rows of branch " + std::to_string(b) + " in the steady part");
+  p.parent_flow = flow_sum[0] / weight_sum[0];
+  p.alpha_flow = flow_sum[1] / weight_sum[1];
+  p.beta_flow = flow_sum[2] / weight_sum[2];
   p.blood_fraction = p.alpha_flow / p.parent_flow;
   p.parent_passages = last[0] - before[0];
   p.alpha_passages = last[1] - before[1];

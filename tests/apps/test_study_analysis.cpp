@@ -157,3 +157,26 @@ TEST(StudyAnalysis, PhaseSeparationPointFromBranches) {
   EXPECT_NEAR(*p.cell_fraction_stderr, std::sqrt(f * (1 - f) / 13), 1e-15);
   EXPECT_NEAR(f, 2.0 / 3, 0.06);
 }
+
+// The flows are time means: a run restarted at half the time step (docs/running.md) writes
+// twice the rows a unit of time. Alpha carries 1.5 for t in (0.5, 1] (50 steps of 0.01) and
+// 1.0 for t in (1, 1.5] (100 steps of 0.005), the parent 2.0 throughout: over t >= 0.5 alpha's
+// mean is 1.25 and its fraction 0.625, where a mean of the rows would give 0.583.
+TEST(StudyAnalysis, PhaseSeparationFlowsAreTimeMeans) {
+  const fs::path path = fs::temp_directory_path() / "rbcflow_test_study_analysis_time_means.csv";
+  fs::remove(path);
+  {
+    BranchesCsv csv(path);
+    for (int i = 1; i <= 150; ++i) {
+      const double t = i <= 50 ? 0.01 * (i + 50) : 1.0 + 0.005 * (i - 50);
+      const double alpha = i <= 50 ? 1.5 : 1.0;
+      csv.write({{i, t, 0, 2.0, 3, 0}, {i, t, 1, alpha, 2, 0}, {i, t, 2, 2.0 - alpha, 1, 0}});
+    }
+  }
+  const cli::PhaseSeparationPoint p = cli::phase_separation_point(path, 1.0 / 3);
+  EXPECT_DOUBLE_EQ(p.from_time, 0.5);
+  EXPECT_NEAR(p.parent_flow, 2.0, 1e-14);
+  EXPECT_NEAR(p.alpha_flow, 1.25, 1e-14);
+  EXPECT_NEAR(p.blood_fraction, 0.625, 1e-14);
+  fs::remove(path);
+}
