@@ -25,13 +25,47 @@ RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs, double toleran
   }
 }
 
+std::shared_ptr<const SpmeGrid> cell_layer_grid(const LayerDomain& domain, long nodes, bool with_double_layer,
+                                                SpmeGridCache* grid_cache) {
+  if (!domain.box) throw std::invalid_argument("cell_layer_grid: free space has no grid");
+  const PeriodicBox& box = *domain.box;
+  if (!with_double_layer)
+    return ewald_grid(grid_cache, EwaldKernel::stokeslet, domain.ewald_tolerance, box, nodes, -1, {}, domain.ranks);
+  return ewald_grid(grid_cache, EwaldKernel::stresslet, domain.ewald_tolerance, box, nodes, -1,
+                    double_layer_real_space(domain.max_kept_pairs, domain.ewald_tolerance, box, nodes), domain.ranks);
+}
+
+namespace {
+
+// This rank's cells: its block of LayerDomain::owned_first, or owned_block's.
+OwnedRange owned_cells(int cells, const LayerDomain& domain) {
+  const std::vector<int>& first = domain.owned_first;
+  if (first.empty()) return owned_block(cells, domain.ranks);
+  const std::size_t p = static_cast<std::size_t>(domain.ranks.size());
+  bool valid = first.size() == p + 1 && first.front() == 0 && first.back() == cells;
+  for (std::size_t r = 0; valid && r < p; ++r) valid = first[r] <= first[r + 1];
+  if (!valid) throw std::invalid_argument("CellLayers: owned_first must rise from 0 to the number of cells, one entry a rank and one more");
+  const int r = domain.ranks.rank();
+  return {first[static_cast<std::size_t>(r)], first[static_cast<std::size_t>(r) + 1]};
+}
+
+}  // namespace
+
+std::vector<int> CellLayers::owned_first() const {
+  if (!domain_.owned_first.empty()) return domain_.owned_first;
+  std::vector<int> first;
+  for (int r = 0; r < domain_.ranks.size(); ++r) first.push_back(owned_block(num_cells_, r, domain_.ranks.size()).begin);
+  first.push_back(num_cells_);
+  return first;
+}
+
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
                        SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density)
     : grids_(std::move(grids)),
       domain_(domain),
       grid_cache_(grid_cache),
-      owned_(owned_block(static_cast<int>(cells.size()), domain.ranks)),
+      owned_(owned_cells(static_cast<int>(cells.size()), domain)),
       num_cells_(static_cast<int>(cells.size())),
       with_double_layer_(with_double_layer) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
@@ -72,14 +106,11 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   std::array<NodeShares, 2> node_shares{};
   if (domain_.box) {
     const PeriodicBox& box = *domain_.box;
-    single_grid = ewald_grid(grid_cache_, EwaldKernel::stokeslet, domain_.ewald_tolerance, box, nc * np, -1, {},
-                             domain_.ranks);
+    single_grid = cell_layer_grid(domain_, nc * np, false, grid_cache_);
     xi_single = single_grid->parameters().xi;
     node_shares[0] = {pair_share_radius(box, single_grid->parameters().cutoff), single_grid->parameters().cutoff};
     if (with_double_layer) {
-      double_grid = ewald_grid(grid_cache_, EwaldKernel::stresslet, domain_.ewald_tolerance, box, nc * np, -1,
-                               double_layer_real_space(domain_.max_kept_pairs, domain_.ewald_tolerance, box, nc * np),
-                               domain_.ranks);
+      double_grid = cell_layer_grid(domain_, nc * np, true, grid_cache_);
       xi_double = double_grid->parameters().xi;
       node_shares[1] = {pair_share_radius(box, double_grid->parameters().cutoff), double_grid->parameters().cutoff};
     }

@@ -12,7 +12,7 @@
 // corrections.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
 // On several ranks (LayerDomain::ranks) each rank builds the corrections of the cells it owns
-// (parallel/ownership.h) and sums only their nodes as sources, at every target; a product is
+// (a block of them: LayerDomain::owned_first, cell_owners.h) and sums only their nodes as sources, at every target; a product is
 // the sum of the ranks' parts (Communicator::sum), the same on every rank. The cells it does
 // not own it holds as nodes only (positions, normals, weights).
 #include <Eigen/Core>
@@ -59,7 +59,15 @@ struct LayerDomain {
   std::int64_t max_kept_pairs = kMaxKeptPairs;  // the Ewald plans' bound (ewald_plan.h)
   bool lean_transforms = false;  // the double layer's density a component at a time (SpmePlan::transform_lean)
   Communicator ranks{};  // the ranks that share the products (default: one)
+  // The cells' owners (cell_owners.h): rank r owns cells owned_first[r] .. owned_first[r + 1] - 1
+  // (ranks + 1 entries, from 0 to the number of cells); empty: owned_block's.
+  std::vector<int> owned_first{};
 };
+
+// The grid of a periodic domain's products of `nodes` cell nodes: the double layer's
+// (with_double_layer) or the single layer's, from `grid_cache` (null: built afresh). Collective.
+std::shared_ptr<const SpmeGrid> cell_layer_grid(const LayerDomain& domain, long nodes, bool with_double_layer,
+                                                SpmeGridCache* grid_cache);
 
 class CellLayers {
  public:
@@ -80,6 +88,7 @@ class CellLayers {
   const SourceNodes& nodes() const { return nodes_; }  // stacked
   // The cells whose corrections this rank builds; only they have a quadrature geometry.
   const OwnedRange& owned() const { return owned_; }
+  std::vector<int> owned_first() const;  // every rank's first owned cell, and the number of cells
   const CellQuadratureGeometry& cell(int c) const { return *cells_[c]; }
   const std::shared_ptr<const CellQuadratureGeometry>& cell_geometry(int c) const { return cells_[c]; }
   const LayerDomain& domain() const { return domain_; }

@@ -5,11 +5,29 @@
 
 namespace rbcflow {
 
+namespace {
+
+std::vector<int> block_firsts(int cells, int ranks) {
+  std::vector<int> first;
+  for (int r = 0; r < ranks; ++r) first.push_back(owned_block(cells, r, ranks).begin);
+  first.push_back(cells);
+  return first;
+}
+
+}  // namespace
+
 OwnedRows::OwnedRows(int cells, int nodes_per_cell, const Communicator& ranks)
-    : ranks_(ranks), total_(cells * nodes_per_cell) {
-  for (int r = 0; r < ranks.size(); ++r) {
-    const OwnedRange c = owned_block(cells, r, ranks.size());
-    blocks_.push_back({c.begin * nodes_per_cell, c.end * nodes_per_cell});
+    : OwnedRows(block_firsts(cells, ranks.size()), nodes_per_cell, ranks) {}
+
+OwnedRows::OwnedRows(const std::vector<int>& first_cell, int nodes_per_cell, const Communicator& ranks)
+    : ranks_(ranks) {
+  const std::size_t p = static_cast<std::size_t>(ranks.size());
+  bool valid = first_cell.size() == p + 1 && first_cell.front() == 0;
+  for (std::size_t r = 0; valid && r < p; ++r) valid = first_cell[r] <= first_cell[r + 1];
+  if (!valid) throw std::invalid_argument("OwnedRows: first cells must rise from 0, one a rank and one more");
+  total_ = first_cell.back() * nodes_per_cell;
+  for (std::size_t r = 0; r < p; ++r) {
+    blocks_.push_back({first_cell[r] * nodes_per_cell, first_cell[r + 1] * nodes_per_cell});
     counts_.push_back(3 * blocks_.back().size());
   }
   mine_ = blocks_[static_cast<std::size_t>(ranks.rank())];

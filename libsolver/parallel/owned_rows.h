@@ -1,8 +1,8 @@
 #pragma once
 // Node data split over the ranks, for GMRES on vectors that each rank holds only a part of.
 //
-// Stacked node data (rows of 3 values, cell by cell) split by the cells' owners
-// (ownership.h): rank r holds the rows of the cells it owns. The GMRES of (10) keeps its
+// Stacked node data (rows of 3 values, cell by cell) split by the cells' owners (ownership.h,
+// or any blocks of the cells in order): rank r holds the rows of the cells it owns. The GMRES of (10) keeps its
 // vectors this way (stepper/cell_velocity.h): each rank only its cells' rows, so the Krylov
 // basis is split over the ranks, and a product's sum over the ranks reaches each rank only as
 // its rows (Communicator::sum_pieces) instead of whole on every rank.
@@ -17,6 +17,8 @@ namespace rbcflow {
 class OwnedRows {
  public:
   OwnedRows(int cells, int nodes_per_cell, const Communicator& ranks);
+  // Rank r holds the rows of cells first_cell[r] .. first_cell[r + 1] - 1 (ranks + 1 entries).
+  OwnedRows(const std::vector<int>& first_cell, int nodes_per_cell, const Communicator& ranks);
 
   int rows() const { return mine_.size(); }  // this rank's
   int total_rows() const { return total_; }

@@ -12,6 +12,7 @@
 
 #include "libsolver/linear/anderson_mixing.h"
 #include "libsolver/operators/cell_layers_at_points.h"
+#include "libsolver/operators/cell_owners.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 
@@ -148,9 +149,6 @@ Matrix extrapolated(std::initializer_list<const Matrix*> history) {
 }  // namespace
 
 FlowSolution CellStepper::solve() const {
-  const Eigen::MatrixXd& previous_velocity = state_.previous_velocity;
-  const Eigen::MatrixXd velocity_guess =
-      extrapolated<Eigen::MatrixXd>({&previous_velocity, &state_.older_velocity, &state_.oldest_velocity});
   const PointField force_guess = extrapolated<PointField>({&state_.previous_wall_force, &state_.older_wall_force});
   const int nc = static_cast<int>(cells_.size());
   const int np = points_per_cell();
@@ -168,6 +166,11 @@ FlowSolution CellStepper::solve() const {
   release_heap_memory();  // what the last step freed into the heaps (step_memory.h)
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
+  // The layer products take the cells in their owners' order (cell_owners.h; the cells' own on
+  // one rank): the node data of the products below are in that order, s.velocity until the end.
+  CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
+  Eigen::MatrixXd traction_of_owners;  // s.traction in the owners' order, where it differs
+  const Eigen::MatrixXd* traction = &s.traction;
   if (nc > 0) {
     std::vector<SHCoeffs> shapes(nc);
     s.membrane.resize(nc);
@@ -186,10 +189,18 @@ FlowSolution CellStepper::solve() const {
       s.traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
     }
     membrane_timer.stop();
+    owners = cell_owners(shapes, *grids_, options_.domain, lambda != 1.0, grid_cache_.get());
+    LayerDomain domain = options_.domain;
+    domain.owned_first = owners.first;
+    if (!owners.in_cell_order()) {
+      traction_of_owners = owners.to_owner_order(s.traction, np);
+      traction = &traction_of_owners;
+      shapes = owners.to_owner_order(shapes);
+    }
     // The traction is the step's only single-layer density: its single layer is computed as
     // the operator is built, and the single-layer tables freed (cell_layers.h).
-    layers = std::make_unique<CellLayers>(shapes, grids_, options_.domain, options_.quadrature, lambda != 1.0,
-                                          grid_cache_.get(), &s.traction);
+    layers = std::make_unique<CellLayers>(shapes, grids_, domain, options_.quadrature, lambda != 1.0,
+                                          grid_cache_.get(), traction);
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
     timing.near_corrections = layers->build_timings().near;
@@ -199,7 +210,7 @@ FlowSolution CellStepper::solve() const {
   std::unique_ptr<CellLayersAtPoints> at_wall;
   if (wall_ && nc > 0) {
     ScopedTimer timer(timing.at_wall_build);
-    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes(), &s.traction);
+    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes(), traction);
     s.near_wall_points = at_wall->near_points();
   }
   double sweep_tolerance = 0;  // > 0: the start sweeps' looser tolerance (below)
@@ -207,7 +218,7 @@ FlowSolution CellStepper::solve() const {
     PointField v = PointField::Zero(wall_->nodes().rows(), 3);
     if (at_wall) {
       ScopedTimer timer(timing.at_wall_products);
-      v -= at_wall->single_layer(s.traction) / (8 * kPi);
+      v -= at_wall->single_layer(*traction) / (8 * kPi);
       if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer(U);
     }
     WallSolution w;
@@ -266,7 +277,7 @@ FlowSolution CellStepper::solve() const {
     work_arrays_->keep(true);
     ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v =
-        solve_cell_velocity(*layers, s.traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
+        solve_cell_velocity(*layers, *traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
                             options_.gmres_max_iterations, guess, image);
     products_timer.stop();
     timing.cell_corrections = layers->build_timings().applied;
@@ -285,6 +296,16 @@ FlowSolution CellStepper::solve() const {
     s.cell_residual = v.gmres.relative_residual;
   };
 
+  Eigen::MatrixXd velocity_guess =
+      extrapolated<Eigen::MatrixXd>({&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity});
+  Eigen::MatrixXd previous_of_owners;
+  const Eigen::MatrixXd* previous = &state_.previous_velocity;
+  if (!owners.in_cell_order() && previous->rows() == nc * np) {
+    previous_of_owners = owners.to_owner_order(*previous, np);
+    previous = &previous_of_owners;
+    velocity_guess = owners.to_owner_order(velocity_guess, np);
+  }
+  const Eigen::MatrixXd& previous_velocity = *previous;
   try {
     const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
     if (start_sweeps) sweep_tolerance = kStartSweepForcing;  // U = 0 in (12): an O(1) change to come
@@ -325,10 +346,12 @@ FlowSolution CellStepper::solve() const {
   if (section_meter_) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);
-    const CellsAtStep cells_now{layers.get(), &s.traction, &s.velocity, &shapes,
+    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
+    const CellsAtStep cells_now{layers.get(), traction, &s.velocity, &shapes,
                               nc > 0 ? grids_->n_grid.get() : nullptr, lambda};
     s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
   }
+  if (!owners.in_cell_order()) s.velocity = owners.to_cell_order(s.velocity, np);
   total_timer.stop();
   if (layers) layers->report_memory(s.memory);
   if (at_wall) at_wall->report_memory(s.memory, "at wall:");

@@ -22,7 +22,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
   }
   // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product gathers the
   // density from the ranks, and each rank receives only its rows of the sum of their parts.
-  const OwnedRows rows(layers.num_cells(), layers.nodes_per_cell(), layers.domain().ranks);
+  const OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), layers.domain().ranks);
   const Eigen::Index n = rows.rows();
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {

@@ -18,6 +18,7 @@
 #include "libsolver/wall/wall_solver.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/cell_layers_at_points.h"
+#include "libsolver/operators/cell_owners.h"
 #include "libsolver/parallel/owned_rows.h"
 #include "libsolver/spme/spme_plan.h"
 #include "libsolver/stepper/cell_velocity.h"
@@ -422,6 +423,82 @@ TEST(DistributedWall, SegmentsAlongThePreconditionerSlabs) {
   // As SolveOnTheRanksEqualsOneRank; the inner products now sum the nodes in slab order.
   EXPECT_LT(d, 1e-12);
   EXPECT_EQ(spread_over_ranks(world, b.force), 0.0);
+}
+
+// Owners by slab (operators/cell_owners.h): each cell to the slab holding its coordinate
+// modulo the length (a coordinate on a slab's start belongs to it), the cells in owner order
+// and each rank's by index; node data round-trip through that order exactly.
+TEST(CellOwners, BySlabOfTheCoordinate) {
+  const CellOwners o = owners_by_slab({3.9, 0.1, 2.0, -0.5, 8.1, 2.0}, {0.0, 2.0, 3.0}, 4.0);
+  EXPECT_EQ(o.order, (std::vector<int>{1, 4, 2, 5, 0, 3}));
+  EXPECT_EQ(o.first, (std::vector<int>{0, 2, 4, 6}));
+  EXPECT_FALSE(o.in_cell_order());
+  Eigen::MatrixXd stacked(12, 3);  // 2 nodes a cell
+  for (int r = 0; r < 12; ++r) stacked.row(r) << r, 10 * r, 100 * r;
+  const Eigen::MatrixXd owned = o.to_owner_order(stacked, 2);
+  EXPECT_EQ(owned.row(0), stacked.row(2));  // cell 1's first node
+  EXPECT_EQ(owned.row(11), stacked.row(7));  // cell 3's second node
+  EXPECT_EQ(o.to_cell_order(owned, 2), stacked);
+  EXPECT_TRUE(owners_by_slab({1.0, 3.0}, {0.0, 2.0}, 4.0).in_cell_order());
+  EXPECT_TRUE(owners_by_block(5, 2).in_cell_order());
+  EXPECT_EQ(owners_by_block(5, 2).first, (std::vector<int>{0, 3, 5}));
+  EXPECT_THROW(owners_by_slab({1.0}, {0.5, 2.0}, 4.0), std::invalid_argument);  // not from 0
+  EXPECT_THROW(owners_by_slab({1.0}, {0.0, 3.0, 2.0}, 4.0), std::invalid_argument);  // not rising
+  EXPECT_THROW(owners_by_slab({NAN}, {0.0}, 4.0), std::invalid_argument);
+}
+
+// A step's owners on the world's ranks: the cells (listed from the top of the box down) go to
+// the rank whose planes of the double layer's grid (split along z, the longest side) hold the
+// mean of their nodes, and the solve of (10) with the cells in that order and those blocks is
+// one rank's solve, reordered: the same iterations, the velocity to rounding.
+TEST(DistributedLayers, CellsOwnedBySlabSolveAsOneRank) {
+  const Communicator world = Communicator::world();
+  const int N = 8;
+  const auto grids = CellGrids::make(N, 2 * N);
+  std::vector<SHCoeffs> cells = three_cells(N);
+  std::reverse(cells.begin(), cells.end());  // z = 3.9, 2.95, 2.0
+  LayerDomain one{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+  LayerDomain shared = one;
+  shared.ranks = world;
+  SpmeGridCache cache;
+  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  ASSERT_EQ(owners.first.size(), static_cast<std::size_t>(world.size()) + 1);
+  EXPECT_EQ(owners.first.back(), 3);
+  const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(shared, 3L * grids->n_grid->grid().size(), true, &cache);
+  if (grid->distributed()) {
+    EXPECT_EQ(grid->axis(0), 2);
+    const double h = 6.0 / grid->size(0);
+    for (int k = owners.first[world.rank()]; k < owners.first[world.rank() + 1]; ++k) {
+      const double z = grids->n_grid->synthesize(cells[owners.order[k]]).col(2).mean();
+      EXPECT_GE(z, grid->first_plane() * h) << "cell " << owners.order[k];
+      EXPECT_LT(z, (grid->first_plane() + grid->planes()) * h) << "cell " << owners.order[k];
+    }
+    if (world.size() == 2) {
+      EXPECT_EQ(owners.order, (std::vector<int>{1, 2, 0}));
+    }
+  } else {
+    EXPECT_TRUE(owners.in_cell_order());
+  }
+  shared.owned_first = owners.first;
+  CellLayers serial(cells, grids, one), distributed(owners.to_owner_order(cells), grids, shared);
+  EXPECT_EQ(distributed.owned().size(), owners.first[world.rank() + 1] - owners.first[world.rank()]);
+  const int np = distributed.nodes_per_cell();
+  const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
+  const Eigen::MatrixXd background = smooth_density(serial.nodes().x + serial.nodes().normal);
+  const VelocitySolve a = solve_cell_velocity(serial, f, 5.0, background, 1e-10, 100, {});
+  const VelocitySolve b = solve_cell_velocity(distributed, owners.to_owner_order(f, np), 5.0,
+                                              owners.to_owner_order(background, np), 1e-10, 100, {});
+  ASSERT_TRUE(a.gmres.converged);
+  EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
+  const double dv = relative(owners.to_cell_order(b.velocity, np), a.velocity);
+  std::printf("  cells owned by slab (first cells %d..%d here): %d iterations, velocity %.1e from one rank's\n",
+              owners.first[world.rank()], owners.first[world.rank() + 1], a.gmres.iterations, dv);
+  EXPECT_LT(dv, 1e-13);  // as CellVelocitySolveOnTheRanksEqualsOneRank
+  EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
+  shared.owned_first = {0, 3};  // not one entry a rank and one more (on 2 or 3 ranks)
+  if (world.size() > 1) {
+    EXPECT_THROW(CellLayers(cells, grids, shared), std::invalid_argument);
+  }
 }
 
 // More ranks than cells: a rank that owns none takes part in every product with nothing.

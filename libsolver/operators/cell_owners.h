@@ -1,0 +1,52 @@
+#pragma once
+// Which rank owns which cell in a step's layer products (cell_layers.h). The owner of a cell
+// builds its quadrature corrections and sums its nodes as sources; the GMRES of (10) keeps its
+// rows (parallel/owned_rows.h). On a grid split into slabs over the ranks (spme/spme_grid.h)
+// a cell is owned by the rank whose slab holds its position (the mean of its nodes) along the
+// slab axis, recomputed every step as the cells move: a rank's cells are then a length of a
+// tube, the slab of the grid it spreads into, which is what keeps a rank's sources near its
+// own part of the grid. Elsewhere (one rank, free space, a grid every rank holds whole) the
+// owners are equal blocks of the cell indices (parallel/ownership.h).
+//
+// The products take the cells in owner order, so that each rank's cells are one block:
+// stacked node data go into that order before a product and back after it.
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/sph/sph_coeffs.h"
+#include "geometry/surface/cell_grids.h"
+#include "libsolver/operators/cell_layers.h"
+
+namespace rbcflow {
+
+struct CellOwners {
+  std::vector<int> order;  // the cells in owner order: rank 0's, then rank 1's, ...; each rank's by index
+  std::vector<int> first;  // ranks + 1 positions in `order`: rank r owns order[first[r]] .. order[first[r + 1] - 1]
+
+  bool in_cell_order() const;  // order is 0, 1, 2, ...
+  // Stacked node data (nodes_per_cell rows a cell) from cell order into owner order, and back.
+  Eigen::MatrixXd to_owner_order(const Eigen::MatrixXd& stacked, int nodes_per_cell) const;
+  Eigen::MatrixXd to_cell_order(const Eigen::MatrixXd& stacked, int nodes_per_cell) const;
+  template <class T>
+  std::vector<T> to_owner_order(const std::vector<T>& per_cell) const {
+    std::vector<T> out;
+    out.reserve(per_cell.size());
+    for (int c : order) out.push_back(per_cell[static_cast<std::size_t>(c)]);
+    return out;
+  }
+};
+
+// owned_block's blocks of the cells in their own order.
+CellOwners owners_by_block(int cells, int ranks);
+// Cell c to the rank r with slab_start[r] <= coordinate[c] < slab_start[r + 1] (the last slab
+// up to `length`), coordinate taken modulo `length`. slab_start: ascending, from 0, one a rank.
+// Throws std::invalid_argument otherwise.
+CellOwners owners_by_slab(const std::vector<double>& coordinate, const std::vector<double>& slab_start, double length);
+
+// The owners of a step's products of these cells (in the domain's box, on its ranks): by the
+// slabs of the grid the products spread into (the double layer's, or the single layer's when
+// with_double_layer is false), taken from `grid_cache` as CellLayers takes it. Collective.
+CellOwners cell_owners(const std::vector<SHCoeffs>& cells, const CellGrids& grids, const LayerDomain& domain,
+                       bool with_double_layer, SpmeGridCache* grid_cache);
+
+}  // namespace rbcflow
