@@ -1,7 +1,9 @@
 #include "cell_layers.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -237,16 +239,22 @@ Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
                            coincident_sources(nodes_.size(), first, n));
 }
 
-Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u) {
+Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform) {
   const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
   if (domain_.box) {
+    if (uniform) uniform->setZero();
     if (!double_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);
     const PointField q = u.array().colwise() * nodes_.weight.array();
     Eigen::MatrixXd regular = double_plan_->double_layer(q, nodes_.normal);
     timings_.double_layer_ewald += double_plan_->timings();
     const PointField owned_q = owned_rows(q), owned_normals = owned_rows(nodes_.normal);
-    regular.rowwise() +=
+    const Eigen::RowVector3d linear =
         double_layer_linear_part(*domain_.box, owned_rows(nodes_.x), owned_q, owned_normals, nodes_per_cell());
+    if (uniform) {
+      *uniform = linear;
+    } else {
+      regular.rowwise() += linear;
+    }
     return regular;
   }
   const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};
@@ -336,10 +344,28 @@ Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
   return v;
 }
 
-Eigen::MatrixXd CellLayers::double_layer_part(const Eigen::MatrixXd& u) {
+Eigen::MatrixXd CellLayers::double_layer_part(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform) {
   if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
   if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
-  return regular_double_layer(u) + apply_corrections(Layer::double_, u);
+  if (uniform) uniform->setZero();
+  return regular_double_layer(u, uniform) + apply_corrections(Layer::double_, u);
+}
+
+std::vector<int> CellLayers::density_rows() const {
+  const int np = nodes_per_cell();
+  std::vector<int> rows;
+  if (owns_all()) {
+    rows.resize(static_cast<std::size_t>(nodes_.size()));
+    std::iota(rows.begin(), rows.end(), 0);
+    return rows;
+  }
+  for (int i = owned_.begin * np; i < owned_.end * np; ++i) rows.push_back(i);
+  if (double_plan_) {
+    for (const Eigen::Index i : double_plan_->density_rows()) rows.push_back(static_cast<int>(i));
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  }
+  return rows;
 }
 
 void CellLayers::report_memory(MemoryReport& report) const {

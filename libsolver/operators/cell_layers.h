@@ -105,8 +105,14 @@ class CellLayers {
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
   // This rank's part of double_layer(u), at every node: its cells' corrections and nodes as
   // sources, its slab of the grid. double_layer(u) is the sum of the ranks' parts; a caller
-  // that needs only some rows of it sums the parts itself (parallel/owned_rows.h).
-  Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u);
+  // that needs only some rows of it sums the parts itself (parallel/owned_rows.h). With
+  // `uniform` (periodic), the part's one term that is the same at every node, the linear part of
+  // (3) of its sources, is returned there instead of added to every row: the part is then zero
+  // at the nodes beyond the real-space cutoff and the near distance of its cells and off its slab.
+  Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
+  // The rows of u that double_layer_part reads, ascending: its cells' and, on a grid split over
+  // the ranks, the nodes whose B-spline stencils reach its slab (all rows on one rank).
+  std::vector<int> density_rows() const;
 
  private:
   struct NearCorrection {
@@ -117,7 +123,7 @@ class CellLayers {
   // The regular sums (SPME + real space, or direct in free space) of the owned cells' nodes
   // as sources, at every node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
-  Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u);
+  Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
   // The owned cells' rows of stacked node data.
   template <class Matrix>
   auto owned_rows(const Matrix& stacked) const {

@@ -98,6 +98,57 @@ void Communicator::gather_pieces(std::span<const double> mine, std::span<double>
                  MPI_DOUBLE, comm_of(handle_));
 }
 
+namespace {
+
+// Offsets of consecutive pieces of these counts, checked against the ranks and the length.
+std::vector<int> exchange_offsets(std::span<const int> counts, int ranks, std::size_t length) {
+  if (static_cast<int>(counts.size()) != ranks) throw std::invalid_argument("Communicator: one exchange count per rank");
+  std::vector<int> offsets(counts.size(), 0);
+  long sum = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = static_cast<int>(sum);
+    sum += counts[r];
+  }
+  if (sum != static_cast<long>(length)) throw std::invalid_argument("Communicator: the exchange counts do not match the lengths given");
+  return offsets;
+}
+
+template <class T>
+void exchange_values(std::span<const T> out, std::span<const int> send_counts, std::span<T> in,
+                     std::span<const int> recv_counts, int ranks, MPI_Datatype type, MPI_Comm comm) {
+  const std::vector<int> send_offsets = exchange_offsets(send_counts, ranks, out.size());
+  const std::vector<int> recv_offsets = exchange_offsets(recv_counts, ranks, in.size());
+  if (ranks == 1) {
+    std::copy(out.begin(), out.end(), in.begin());
+    return;
+  }
+  MPI_Alltoallv(out.data(), send_counts.data(), send_offsets.data(), type, in.data(), recv_counts.data(),
+                recv_offsets.data(), type, comm);
+}
+
+}  // namespace
+
+void Communicator::exchange(std::span<const double> out, std::span<const int> send_counts, std::span<double> in,
+                            std::span<const int> recv_counts) const {
+  exchange_values(out, send_counts, in, recv_counts, size_, MPI_DOUBLE, size_ == 1 ? MPI_COMM_SELF : comm_of(handle_));
+}
+
+void Communicator::exchange(std::span<const int> out, std::span<const int> send_counts, std::span<int> in,
+                            std::span<const int> recv_counts) const {
+  exchange_values(out, send_counts, in, recv_counts, size_, MPI_INT, size_ == 1 ? MPI_COMM_SELF : comm_of(handle_));
+}
+
+std::vector<int> Communicator::exchange_counts(std::span<const int> send_counts) const {
+  if (static_cast<int>(send_counts.size()) != size_) throw std::invalid_argument("Communicator: one exchange count per rank");
+  std::vector<int> recv(send_counts.size());
+  if (size_ == 1) {
+    recv[0] = send_counts[0];
+    return recv;
+  }
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv.data(), 1, MPI_INT, comm_of(handle_));
+  return recv;
+}
+
 double Communicator::min(double value) const {
   if (size_ == 1) return value;
   double low = 0;
@@ -164,6 +215,19 @@ void Communicator::sum_pieces(std::span<const double> values, std::span<double> 
 void Communicator::gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int>) const {
   if (all.size() != mine.size()) throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
   std::copy(mine.begin(), mine.end(), all.begin());
+}
+void Communicator::exchange(std::span<const double> out, std::span<const int>, std::span<double> in,
+                            std::span<const int>) const {
+  if (in.size() != out.size()) throw std::invalid_argument("Communicator: the exchange counts do not match the lengths given");
+  std::copy(out.begin(), out.end(), in.begin());
+}
+void Communicator::exchange(std::span<const int> out, std::span<const int>, std::span<int> in,
+                            std::span<const int>) const {
+  if (in.size() != out.size()) throw std::invalid_argument("Communicator: the exchange counts do not match the lengths given");
+  std::copy(out.begin(), out.end(), in.begin());
+}
+std::vector<int> Communicator::exchange_counts(std::span<const int> send_counts) const {
+  return {send_counts.begin(), send_counts.end()};
 }
 double Communicator::min(double value) const { return value; }
 int Communicator::ranks_on_this_machine() const { return 1; }

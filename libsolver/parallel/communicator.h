@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace rbcflow {
 
@@ -41,6 +42,16 @@ class Communicator {
   // The ranks' pieces side by side in rank order, on every rank: `all` (the sum of counts
   // values) gets counts[r] values from rank r, whose `mine` holds them (MPI_Allgatherv).
   void gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int> counts) const;
+  // Each rank's own values for each other rank (MPI_Alltoallv): `out` holds send_counts[r]
+  // values for rank r, rank after rank; `in` gets recv_counts[r] values from rank r, rank after
+  // rank. A rank's values to itself are copied. The counts must agree with the other ranks'
+  // (exchange_counts gives them).
+  void exchange(std::span<const double> out, std::span<const int> send_counts, std::span<double> in,
+                std::span<const int> recv_counts) const;
+  void exchange(std::span<const int> out, std::span<const int> send_counts, std::span<int> in,
+                std::span<const int> recv_counts) const;
+  // How many values each rank will send this one, from how many this one sends each (MPI_Alltoall).
+  std::vector<int> exchange_counts(std::span<const int> send_counts) const;
   // The smallest of the ranks' values, the same on every rank.
   double min(double value) const;
   // How many of the ranks share this rank's machine (its node: MPI_COMM_TYPE_SHARED).

@@ -1,5 +1,6 @@
 #include "owned_rows.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -38,17 +39,102 @@ Eigen::MatrixXd OwnedRows::mine(const Eigen::MatrixXd& all) const {
   return all.middleRows(mine_.begin, mine_.size());
 }
 
+namespace {
+
+// rows (ascending) as 3 values each, row after row, rank after rank.
+std::vector<double> packed(const Eigen::MatrixXd& m, const std::vector<std::vector<int>>& rows) {
+  std::vector<double> out;
+  for (const std::vector<int>& of_rank : rows)
+    for (int r : of_rank)
+      for (int c = 0; c < 3; ++c) out.push_back(m(r, c));
+  return out;
+}
+
+std::vector<int> values_per_rank(const std::vector<std::vector<int>>& rows, int per_row) {
+  std::vector<int> counts;
+  for (const std::vector<int>& of_rank : rows) counts.push_back(per_row * static_cast<int>(of_rank.size()));
+  return counts;
+}
+
+}  // namespace
+
 Eigen::MatrixXd OwnedRows::sum_mine(const Eigen::MatrixXd& part) const {
   if (part.rows() != total_ || part.cols() != 3) throw std::invalid_argument("OwnedRows::sum_mine: not stacked node data of the cells");
-  // The ranks' pieces one after the other, each its rows x 3 in column order.
-  Eigen::VectorXd pieces(3 * static_cast<Eigen::Index>(total_));
-  for (const OwnedRange& b : blocks_)
-    Eigen::Map<Eigen::MatrixXd>(pieces.data() + 3 * static_cast<Eigen::Index>(b.begin), b.size(), 3) =
-        part.middleRows(b.begin, b.size());
-  Eigen::MatrixXd sum(mine_.size(), 3);
-  ranks_.sum_pieces({pieces.data(), static_cast<std::size_t>(pieces.size())}, {sum.data(), static_cast<std::size_t>(sum.size())},
-                    counts_);
+  Eigen::MatrixXd sum = part.middleRows(mine_.begin, mine_.size());
+  const int p = ranks_.size();
+  if (p == 1) return sum;
+  // Each other rank's rows of this part that are not zero, with their indices.
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(p));
+  for (int r = 0; r < p; ++r) {
+    if (r == ranks_.rank()) continue;
+    for (int i = blocks_[r].begin; i < blocks_[r].end; ++i)
+      if (!part.row(i).isZero(0.0)) rows[r].push_back(i);
+  }
+  const std::vector<int> send_counts = values_per_rank(rows, 1);
+  const std::vector<int> recv_counts = ranks_.exchange_counts(send_counts);
+  std::vector<int> send_index;
+  for (const std::vector<int>& of_rank : rows) send_index.insert(send_index.end(), of_rank.begin(), of_rank.end());
+  long received = 0;
+  for (int n : recv_counts) received += n;
+  std::vector<int> recv_index(static_cast<std::size_t>(received));
+  ranks_.exchange(send_index, send_counts, recv_index, recv_counts);
+  const std::vector<double> out = packed(part, rows);
+  std::vector<int> recv_values(recv_counts);
+  for (int& n : recv_values) n *= 3;
+  std::vector<double> in(3 * static_cast<std::size_t>(received));
+  ranks_.exchange(out, values_per_rank(rows, 3), in, recv_values);
+  // Added in rank order: the same sum whatever order the messages came in.
+  for (std::size_t k = 0; k < recv_index.size(); ++k)
+    for (int c = 0; c < 3; ++c) sum(recv_index[k] - mine_.begin, c) += in[3 * k + static_cast<std::size_t>(c)];
+  rows_received_ += received;
   return sum;
+}
+
+void OwnedRows::read_only(const std::vector<int>& needed) {
+  const int p = ranks_.size();
+  if (!std::is_sorted(needed.begin(), needed.end()) || (!needed.empty() && (needed.front() < 0 || needed.back() >= total_)))
+    throw std::invalid_argument("OwnedRows::read_only: the rows must be ascending rows of the whole");
+  read_rows_.assign(static_cast<std::size_t>(p), {});
+  for (int i : needed) {
+    if (mine_.contains(i)) continue;
+    int r = 0;
+    while (!blocks_[r].contains(i)) ++r;
+    if (read_rows_[r].empty() || read_rows_[r].back() != i) read_rows_[r].push_back(i);
+  }
+  // Each rank tells each owner which of its rows it reads.
+  const std::vector<int> counts = values_per_rank(read_rows_, 1);
+  const std::vector<int> recv_counts = ranks_.exchange_counts(counts);
+  std::vector<int> out, in;
+  for (const std::vector<int>& of_rank : read_rows_) out.insert(out.end(), of_rank.begin(), of_rank.end());
+  long total = 0;
+  for (int n : recv_counts) total += n;
+  in.resize(static_cast<std::size_t>(total));
+  ranks_.exchange(out, counts, in, recv_counts);
+  send_rows_.assign(static_cast<std::size_t>(p), {});
+  std::size_t k = 0;
+  for (int r = 0; r < p; ++r)
+    for (int n = 0; n < recv_counts[r]; ++n) send_rows_[r].push_back(in[k++]);
+  read_all_ = false;
+}
+
+Eigen::MatrixXd OwnedRows::gather_read(const Eigen::MatrixXd& mine) const {
+  if (read_all_) return gather(mine);
+  if (mine.rows() != mine_.size() || mine.cols() != 3) throw std::invalid_argument("OwnedRows::gather_read: not this rank's rows");
+  Eigen::MatrixXd all = Eigen::MatrixXd::Zero(total_, 3);
+  all.middleRows(mine_.begin, mine_.size()) = mine;
+  if (ranks_.size() == 1) return all;
+  const std::vector<double> out = packed(all, send_rows_);
+  const std::vector<int> recv_counts = values_per_rank(read_rows_, 3);
+  long received = 0;
+  for (int n : recv_counts) received += n;
+  std::vector<double> in(static_cast<std::size_t>(received));
+  ranks_.exchange(out, values_per_rank(send_rows_, 3), in, recv_counts);
+  std::size_t k = 0;
+  for (const std::vector<int>& of_rank : read_rows_)
+    for (int i : of_rank)
+      for (int c = 0; c < 3; ++c) all(i, c) = in[k++];
+  rows_received_ += received / 3;
+  return all;
 }
 
 Eigen::MatrixXd OwnedRows::gather(const Eigen::MatrixXd& mine) const {

@@ -25,9 +25,20 @@ class OwnedRows {
   // This rank's rows of `all` (total_rows() x 3).
   Eigen::MatrixXd mine(const Eigen::MatrixXd& all) const;
   // The sum over the ranks of their `part`s (each total_rows() x 3), this rank's rows of it.
+  // Only the rows of a part that are not zero travel to their owner (a rank's part of a layer
+  // product is zero away from its cells and its slab of the grid).
   Eigen::MatrixXd sum_mine(const Eigen::MatrixXd& part) const;
   // Every rank's rows (`mine` on each, rows() x 3) stacked in order, on every rank.
   Eigen::MatrixXd gather(const Eigen::MatrixXd& mine) const;
+
+  // The rows of the whole this rank reads (`needed`, ascending; its own may be among them):
+  // after this, gather_read brings only those. Collective.
+  void read_only(const std::vector<int>& needed);
+  // The stacked rows (total_rows() x 3) with this rank's own rows and those of read_only's
+  // (all of them before read_only), zero elsewhere. Collective.
+  Eigen::MatrixXd gather_read(const Eigen::MatrixXd& mine) const;
+  // Rows this rank has received from the others in gather_read and sum_mine so far.
+  long rows_received() const { return rows_received_; }
 
  private:
   Communicator ranks_;
@@ -35,6 +46,9 @@ class OwnedRows {
   OwnedRange mine_;                    // rows
   std::vector<OwnedRange> blocks_;     // every rank's rows
   std::vector<int> counts_;            // every rank's values: 3 per row
+  bool read_all_ = true;               // until read_only
+  std::vector<std::vector<int>> send_rows_, read_rows_;  // by rank: own rows it reads, its rows read here
+  mutable long rows_received_ = 0;
 };
 
 // Node vectors interleaved (x0 y0 z0 x1 ...: wall_elements.h's to_vector) split over the ranks

@@ -1,7 +1,9 @@
 #include "ewald_plan.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -85,6 +87,22 @@ EwaldPlan::EwaldPlan(std::shared_ptr<const SpmeGrid> grid, const PointField& sou
       smooth_(grid->distributed() ? SpmePlan(grid, sources, targets) : SpmePlan(grid, sources, rows_of(targets, rows))) {
   if (has_real_space_sources())
     neighbors_.emplace(grid->box(), grid->parameters().cutoff, sources, rows_of(targets, rows));
+}
+
+std::vector<Eigen::Index> EwaldPlan::density_rows() const {
+  std::vector<Eigen::Index> rows;
+  if (!rows_) {
+    rows.resize(static_cast<std::size_t>(smooth_.n_sources()));
+    std::iota(rows.begin(), rows.end(), Eigen::Index{0});
+    return rows;
+  }
+  for (Eigen::Index i = rows_->begin; i < rows_->end; ++i) rows.push_back(i);
+  if (!smooth_of_rows_) {
+    for (const int i : smooth_.sources().point_indices()) rows.push_back(i);
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  }
+  return rows;
 }
 
 void EwaldPlan::add_at_rows(PointField& u, const PointField& at_rows) const {

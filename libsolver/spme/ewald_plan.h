@@ -114,6 +114,10 @@ class EwaldPlan {
   // the SpmeGridCache's).
   void report_memory(MemoryReport& report, const std::string& prefix) const;
   const SpmePlan& smooth() const { return smooth_; }
+  // The source rows whose densities a product reads, ascending: all of them, or with
+  // SourceRows those rows and, on a grid split over the ranks, the sources whose stencils reach
+  // this rank's slab.
+  std::vector<Eigen::Index> density_rows() const;
   double xi() const { return smooth_.grid().parameters().xi; }
   // Stage times of the last product.
   const EwaldTimings& timings() const { return timings_; }

@@ -30,6 +30,9 @@ class SpmeStencils {
 
   int size() const { return static_cast<int>(order_.size()); }  // points with a stencil here
   int points() const { return points_; }                        // the caller's points
+  // The caller's points with a stencil here (all but those off this rank's slab), in the
+  // stencils' order.
+  const std::vector<int>& point_indices() const { return order_; }
   std::size_t memory_bytes() const;
 
   // grid[C * g + c] = sum_points W_point(g) density[C * point + c]: `density` holds C

@@ -20,14 +20,26 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     if (image) *image = rhs;
     return s;
   }
-  // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product gathers the
-  // density from the ranks, and each rank receives only its rows of the sum of their parts.
-  const OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), layers.domain().ranks);
+  // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product brings the
+  // rows of the density this rank reads (its cells' and those its slab of the grid spreads)
+  // from their owners, and each rank receives only its rows of the sum of the ranks' parts,
+  // from the ranks whose parts reach them. The parts' uniform term is summed apart.
+  const Communicator& ranks = layers.domain().ranks;
+  OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), ranks);
+  if (ranks.size() > 1) rows.read_only(layers.density_rows());
   const Eigen::Index n = rows.rows();
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const Eigen::Map<const Eigen::MatrixXd> u(v.data(), n, 3);
-    const Eigen::MatrixXd Au = u - c * rows.sum_mine(layers.double_layer_part(rows.gather(u)));
+    if (ranks.size() == 1) {
+      const Eigen::MatrixXd Au = u - c * layers.double_layer_part(u);
+      return Eigen::Map<const Eigen::VectorXd>(Au.data(), Au.size());
+    }
+    Eigen::RowVector3d uniform;
+    Eigen::MatrixXd Ku = rows.sum_mine(layers.double_layer_part(rows.gather_read(u), &uniform));
+    ranks.sum(uniform);
+    Ku.rowwise() += uniform;
+    const Eigen::MatrixXd Au = u - c * Ku;
     return Eigen::Map<const Eigen::VectorXd>(Au.data(), Au.size());
   };
   auto mine = [&](const Eigen::MatrixXd& all) {
@@ -41,6 +53,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
   Eigen::VectorXd Ax;
   if (image && guessed && image->rows() == rhs.rows() && image->cols() == 3) Ax = mine(*image);
   s.gmres = gmres(A, b, x, tolerance, max_iterations, 60, image ? &Ax : nullptr, SplitInnerProducts{layers.domain().ranks});
+  s.rows_received = rows.rows_received();
   s.velocity = gathered(x);
   if (image) *image = gathered(Ax);
   return s;

@@ -14,6 +14,7 @@ namespace rbcflow {
 struct VelocitySolve {
   Eigen::MatrixXd velocity;  // stacked nodes x 3
   GmresReport gmres;         // iterations 0 for lambda = 1
+  long rows_received = 0;    // node rows this rank received from the others in the solve's products
 };
 
 // mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3.

@@ -218,6 +218,43 @@ TEST(OwnedRows, SumsAndGathersByTheOwnersRows) {
   EXPECT_THROW(OwnedRows(2, 4, world).gather(Eigen::MatrixXd::Zero(3, 3)), std::invalid_argument);
 }
 
+// The rows a rank reads (read_only) come from their owners, and only they; a sum brings each
+// owner only the rows of the other ranks' parts that are not zero. Small integers: exact.
+TEST(OwnedRows, ReadOnlyTheRowsReadAndSumOnlyTheRowsThatAreNotZero) {
+  const Communicator world = Communicator::world();
+  const int p = world.size(), me = world.rank(), cells = 7, np = 2;
+  OwnedRows rows(cells, np, world);
+  const OwnedRange mine = owned_block(cells, world);
+  Eigen::MatrixXd all(cells * np, 3);
+  for (Eigen::Index i = 0; i < all.size(); ++i) all.data()[i] = static_cast<double>(i % 97 + 1);
+  // This rank reads rows 0 and 13 (whoever owns them) and its own first row.
+  const std::vector<int> needed = mine.empty() ? std::vector<int>{0, 13} : std::vector<int>{0, mine.begin * np, 13};
+  rows.read_only(needed);
+  const Eigen::MatrixXd read = rows.gather_read(rows.mine(all));
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(cells * np, 3);
+  expected.middleRows(mine.begin * np, mine.size() * np) = all.middleRows(mine.begin * np, mine.size() * np);
+  for (int i : needed) expected.row(i) = all.row(i);
+  EXPECT_EQ(read, expected);
+  long others = 0;
+  for (int i : {0, 13}) others += i >= mine.begin * np && i < mine.end * np ? 0 : 1;
+  EXPECT_EQ(rows.rows_received(), others);
+  // Each rank's part: its rank + 1 at row 3 and at its own rows' first, zero elsewhere.
+  Eigen::MatrixXd part = Eigen::MatrixXd::Zero(cells * np, 3);
+  part.row(3).setConstant(me + 1);
+  if (!mine.empty()) part.row(mine.begin * np).array() += me + 1;
+  Eigen::MatrixXd sum_expected = Eigen::MatrixXd::Zero(cells * np, 3);
+  for (int r = 0; r < p; ++r) {
+    sum_expected.row(3).array() += r + 1;
+    const OwnedRange b = owned_block(cells, r, p);
+    if (!b.empty()) sum_expected.row(b.begin * np).array() += r + 1;
+  }
+  const long before = rows.rows_received();
+  EXPECT_EQ(rows.sum_mine(part), sum_expected.middleRows(mine.begin * np, mine.size() * np));
+  // Row 3 comes from every other rank to its owner; the ranks' own first rows stay home.
+  EXPECT_EQ(rows.rows_received() - before, mine.contains(1) ? p - 1 : 0);
+  EXPECT_THROW(rows.read_only({13, 0}), std::invalid_argument);
+}
+
 // Node vectors split in an order of the nodes (a permutation, cut into the ranks' segments in
 // rank order): each rank's segment lists its nodes in that order, a sum reaches it as its
 // segment, a gather puts every node back in its place. Small integers: the sums are exact.
@@ -491,8 +528,12 @@ TEST(DistributedLayers, CellsOwnedBySlabSolveAsOneRank) {
   ASSERT_TRUE(a.gmres.converged);
   EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
   const double dv = relative(owners.to_cell_order(b.velocity, np), a.velocity);
-  std::printf("  cells owned by slab (first cells %d..%d here): %d iterations, velocity %.1e from one rank's\n",
-              owners.first[world.rank()], owners.first[world.rank() + 1], a.gmres.iterations, dv);
+  const long total = 3L * np * (b.gmres.iterations + 1);  // the rows an all-gather and a whole sum would bring
+  std::printf("  cells owned by slab (first cells %d..%d here): %d iterations, velocity %.1e from one rank's, "
+              "%ld node rows received (%.2f of all rows, twice a product)\n",
+              owners.first[world.rank()], owners.first[world.rank() + 1], a.gmres.iterations, dv, b.rows_received,
+              static_cast<double>(b.rows_received) / (2 * total));
+  EXPECT_LE(b.rows_received, 2 * total);
   EXPECT_LT(dv, 1e-13);  // as CellVelocitySolveOnTheRanksEqualsOneRank
   EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
   shared.owned_first = {0, 3};  // not one entry a rank and one more (on 2 or 3 ranks)
