@@ -118,6 +118,8 @@ int main(int argc, char** argv) {
     double best_step = 1e300, best_cpu = 1e300;
     KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
+    long last_rows_received = 0, last_nodes = 0;
+    int last_iterations = 0;
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
     for (int k = 1; k <= steps; ++k) {
@@ -132,6 +134,9 @@ int main(int argc, char** argv) {
       print_row(std::to_string(k).c_str(), step, cpu, kernel, s.timings, s.gmres_cells, s.gmres_wall);
       if (k <= 2) std::printf("       peak memory after step %d: %.0f MB\n", k, peak_resident_mb());
       memory = s.memory;
+      last_rows_received = s.cell_rows_received;
+      last_iterations = s.gmres_cells;
+      last_nodes = s.velocity.rows();
       std::fflush(stdout);
       if (k == 1 && steps > 1) continue;
       best_step = std::min(best_step, step);
@@ -149,6 +154,10 @@ int main(int argc, char** argv) {
     std::printf("peak memory %.0f MB (%.1f MB per cell); rbcflow check's estimate %.0f MB\n", peak_mb, peak_mb / cells,
                 step_case.estimated_peak_bytes / 1048576.0);
     if (!ranks.root()) std::fprintf(stderr, "rank %d: peak memory %.0f MB\n", ranks.rank(), peak_mb);
+    if (ranks.size() > 1) {
+      std::fprintf(stderr, "rank %d: %ld node rows received in the last step's products of (10), %d GMRES iterations, %ld cell nodes\n",
+                   ranks.rank(), last_rows_received, last_iterations, last_nodes);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());
     return 1;

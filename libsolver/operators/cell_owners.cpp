@@ -40,26 +40,25 @@ CellOwners owners_by_block(int cells, int ranks) {
   return o;
 }
 
-CellOwners owners_by_slab(const std::vector<double>& coordinate, const std::vector<double>& slab_start, double length) {
-  const std::size_t p = slab_start.size();
-  bool valid = p > 0 && slab_start.front() == 0.0 && length > 0 && std::isfinite(length);
-  for (std::size_t r = 1; valid && r < p; ++r) valid = slab_start[r - 1] <= slab_start[r] && slab_start[r] <= length;
-  if (!valid) throw std::invalid_argument("owners_by_slab: slab starts must rise from 0 within the length, one a rank");
-  std::vector<int> owner(coordinate.size());
+CellOwners owners_along(const std::vector<double>& coordinate, double length, int ranks) {
+  if (!(length > 0) || !std::isfinite(length) || ranks < 1) throw std::invalid_argument("owners_along: bad length or ranks");
+  const int n = static_cast<int>(coordinate.size());
+  std::vector<double> x(coordinate.size());
   for (std::size_t c = 0; c < coordinate.size(); ++c) {
-    if (!std::isfinite(coordinate[c])) throw std::invalid_argument("owners_by_slab: a cell's coordinate is not finite");
-    double x = std::fmod(coordinate[c], length);
-    if (x < 0) x += length;
-    if (x >= length) x = 0;  // -tiny % length + length rounds to length
-    owner[c] = static_cast<int>(std::upper_bound(slab_start.begin(), slab_start.end(), x) - slab_start.begin()) - 1;
+    if (!std::isfinite(coordinate[c])) throw std::invalid_argument("owners_along: a cell's coordinate is not finite");
+    x[c] = std::fmod(coordinate[c], length);
+    if (x[c] < 0) x[c] += length;
+    if (x[c] >= length) x[c] = 0;  // -tiny % length + length rounds to length
   }
-  CellOwners o;
-  o.order.resize(coordinate.size());
-  std::iota(o.order.begin(), o.order.end(), 0);
-  std::stable_sort(o.order.begin(), o.order.end(), [&](int a, int b) { return owner[a] < owner[b]; });
-  o.first.assign(p + 1, 0);
-  for (int r : owner) ++o.first[static_cast<std::size_t>(r) + 1];
-  std::partial_sum(o.first.begin(), o.first.end(), o.first.begin());
+  std::vector<int> along(coordinate.size());
+  std::iota(along.begin(), along.end(), 0);
+  std::stable_sort(along.begin(), along.end(), [&](int a, int b) { return x[a] < x[b]; });
+  CellOwners o = owners_by_block(n, ranks);
+  for (int r = 0; r < ranks; ++r) {  // rank r's cells, by index
+    std::vector<int> mine(along.begin() + o.first[r], along.begin() + o.first[r + 1]);
+    std::sort(mine.begin(), mine.end());
+    std::copy(mine.begin(), mine.end(), o.order.begin() + o.first[r]);
+  }
   return o;
 }
 
@@ -70,16 +69,10 @@ CellOwners cell_owners(const std::vector<SHCoeffs>& cells, const CellGrids& grid
   const long nodes = static_cast<long>(nc) * grids.n_grid->grid().size();
   const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(domain, nodes, with_double_layer, grid_cache);
   if (!grid->distributed()) return owners_by_block(nc, p);
-  // Every rank's first plane, from each rank's own (a sum of vectors zero but at the rank's
-  // entry); a rank without planes (the last ones, when the ranks outnumber them) starts at the end.
   const int axis = grid->axis(0);
-  const double length = domain.box->length(axis);
-  Eigen::VectorXd start = Eigen::VectorXd::Zero(p);
-  start[domain.ranks.rank()] = grid->planes() > 0 ? grid->first_plane() * (length / grid->size(0)) : length;
-  domain.ranks.sum(start);
   std::vector<double> coordinate(static_cast<std::size_t>(nc));
   for (int c = 0; c < nc; ++c) coordinate[static_cast<std::size_t>(c)] = grids.n_grid->synthesize(cells[c]).col(axis).mean();
-  return owners_by_slab(coordinate, std::vector<double>(start.data(), start.data() + p), length);
+  return owners_along(coordinate, domain.box->length(axis), p);
 }
 
 }  // namespace rbcflow

@@ -2,11 +2,13 @@
 // Which rank owns which cell in a step's layer products (cell_layers.h). The owner of a cell
 // builds its quadrature corrections and sums its nodes as sources; the GMRES of (10) keeps its
 // rows (parallel/owned_rows.h). On a grid split into slabs over the ranks (spme/spme_grid.h)
-// a cell is owned by the rank whose slab holds its position (the mean of its nodes) along the
-// slab axis, recomputed every step as the cells move: a rank's cells are then a length of a
-// tube, the slab of the grid it spreads into, which is what keeps a rank's sources near its
-// own part of the grid. Elsewhere (one rank, free space, a grid every rank holds whole) the
-// owners are equal blocks of the cell indices (parallel/ownership.h).
+// the cells are taken along the slab axis by their positions (the mean of their nodes, in
+// [0, L) of the box) and cut into the ranks' blocks of equal counts (owned_block's sizes), rank
+// 0 the lowest, as the grid's slabs are: a rank's cells are then a length of a tube, near the
+// slab of the grid it spreads into, and the ranks hold equal shares of the corrections, the
+// largest memory of a step (cutting at the slabs' planes instead left tube27's ranks 15 and 12
+// cells). Recomputed every step as the cells move. Elsewhere (one rank, free space, a grid every
+// rank holds whole) the owners are equal blocks of the cell indices (parallel/ownership.h).
 //
 // The products take the cells in owner order, so that each rank's cells are one block:
 // stacked node data go into that order before a product and back after it.
@@ -38,14 +40,13 @@ struct CellOwners {
 
 // owned_block's blocks of the cells in their own order.
 CellOwners owners_by_block(int cells, int ranks);
-// Cell c to the rank r with slab_start[r] <= coordinate[c] < slab_start[r + 1] (the last slab
-// up to `length`), coordinate taken modulo `length`. slab_start: ascending, from 0, one a rank.
-// Throws std::invalid_argument otherwise.
-CellOwners owners_by_slab(const std::vector<double>& coordinate, const std::vector<double>& slab_start, double length);
+// The cells by their coordinate modulo `length` (ties by index), cut into owned_block's sizes:
+// rank 0 the lowest. Throws std::invalid_argument for a coordinate that is not finite.
+CellOwners owners_along(const std::vector<double>& coordinate, double length, int ranks);
 
-// The owners of a step's products of these cells (in the domain's box, on its ranks): by the
-// slabs of the grid the products spread into (the double layer's, or the single layer's when
-// with_double_layer is false), taken from `grid_cache` as CellLayers takes it. Collective.
+// The owners of a step's products of these cells (in the domain's box, on its ranks): along the
+// slab axis of the grid the products spread into (the double layer's, or the single layer's
+// when with_double_layer is false), taken from `grid_cache` as CellLayers takes it. Collective.
 CellOwners cell_owners(const std::vector<SHCoeffs>& cells, const CellGrids& grids, const LayerDomain& domain,
                        bool with_double_layer, SpmeGridCache* grid_cache);
 

@@ -293,6 +293,7 @@ FlowSolution CellStepper::solve() const {
     }
     s.velocity = v.velocity;
     s.gmres_cells += v.gmres.iterations;
+    s.cell_rows_received += v.rows_received;
     s.cell_residual = v.gmres.relative_residual;
   };
 

@@ -74,6 +74,7 @@ struct FlowSolution {
   int start_sweeps = 0;       // the first step's sweeps of (12) and (10) (lambda != 1 with a wall)
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
+  long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
   StepTimings timings;        // where solve() spent its time
   MemoryReport memory;        // what solve()'s operators held at its end (memory_report.h)
 };
