@@ -22,24 +22,52 @@ double mean_of(const std::vector<double>& v, std::size_t begin, std::size_t end)
   return s / static_cast<double>(end - begin);
 }
 
+// The time mean of rows [begin, end): each value weighted by its row's step, from the row
+// before it (a run restarted at another time step writes rows of another length). Summed as
+// differences from the first value, so that a constant is its own mean exactly.
+double time_mean(const std::vector<double>& v, const std::vector<double>& step, std::size_t begin, std::size_t end) {
+  double s = 0, w = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    s += step[i] * (v[i] - v[begin]);
+    w += step[i];
+  }
+  return v[begin] + s / w;
+}
+
+// Each row's step: its time less the previous row's (the first row's, its time).
+std::vector<double> row_steps(const CsvTable& table) {
+  const std::size_t time = table.column("time");
+  std::vector<double> step;
+  double previous = 0;
+  for (const auto& row : table.rows) {
+    const double t = std::strtod(row[time].c_str(), nullptr);
+    step.push_back(t - previous);
+    previous = t;
+  }
+  return step;
+}
+
 enum class Summary { mean, largest, smallest };
 
-// The mean, largest or smallest value of a column over the rows with time >= from; empty when
-// the column is missing or any of those rows has no value.
+// The time mean, largest or smallest value of a column over the rows with time >= from; empty
+// when the column is missing or any of those rows has no value.
 std::optional<double> column_summary(const CsvTable& table, const std::string& name, double from, Summary how) {
   const auto it = std::find(table.columns.begin(), table.columns.end(), name);
   if (it == table.columns.end()) return std::nullopt;
   const std::size_t col = static_cast<std::size_t>(it - table.columns.begin()), time = table.column("time");
-  std::vector<double> v;
-  for (const auto& row : table.rows) {
+  const std::vector<double> all_steps = row_steps(table);
+  std::vector<double> v, step;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
     if (std::strtod(row[time].c_str(), nullptr) < from) continue;
     if (row[col].empty()) return std::nullopt;
     v.push_back(std::strtod(row[col].c_str(), nullptr));
+    step.push_back(all_steps[r]);
   }
   if (v.empty()) return std::nullopt;
   if (how == Summary::largest) return *std::max_element(v.begin(), v.end());
   if (how == Summary::smallest) return *std::min_element(v.begin(), v.end());
-  return mean_of(v, 0, v.size());
+  return time_mean(v, step, 0, v.size());
 }
 
 }  // namespace
@@ -53,30 +81,33 @@ SteadyAverage steady_average(const std::filesystem::path& csv, int axis, double 
   SteadyAverage a;
   a.from_time = steady_fraction * last;
   a.to_time = last;
-  std::vector<double> viscosity, gradient;
-  for (const auto& row : table.rows) {
+  const std::vector<double> all_steps = row_steps(table);
+  std::vector<double> viscosity, gradient, step;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
     if (std::strtod(row[time].c_str(), nullptr) < a.from_time) continue;
     if (row[mu].empty()) throw std::runtime_error(csv.string() + ": no effective viscosity (a straight tube in a square box is needed)");
     viscosity.push_back(std::strtod(row[mu].c_str(), nullptr));
     gradient.push_back(std::strtod(row[dp].c_str(), nullptr));
+    step.push_back(all_steps[r]);
   }
   if (viscosity.empty()) throw std::runtime_error(csv.string() + ": no rows in the steady part");
   const std::size_t n = viscosity.size();
   a.rows = static_cast<long>(n);
-  a.mean = mean_of(viscosity, 0, n);
+  a.mean = time_mean(viscosity, step, 0, n);
   // Batch means: consecutive rows are correlated; batches of n / B rows are nearly not.
   const int batches = static_cast<int>(std::min<std::size_t>(kMaxBatches, n / 2));
   if (n >= 4 && batches >= 2) {
     const std::size_t size = n / batches;
     std::vector<double> means;
-    for (int b = 0; b < batches; ++b) means.push_back(mean_of(viscosity, b * size, (b + 1) * size));
+    for (int b = 0; b < batches; ++b) means.push_back(time_mean(viscosity, step, b * size, (b + 1) * size));
     const double m = mean_of(means, 0, means.size());
     double var = 0;
     for (double x : means) var += (x - m) * (x - m);
     a.standard_error = std::sqrt(var / (batches - 1) / batches);
   }
-  if (n >= 2) a.drift = (mean_of(viscosity, n - n / 2, n) - mean_of(viscosity, 0, n / 2)) / a.mean;
-  const double g = mean_of(gradient, 0, n);
+  if (n >= 2) a.drift = (time_mean(viscosity, step, n - n / 2, n) - time_mean(viscosity, step, 0, n / 2)) / a.mean;
+  const double g = time_mean(gradient, step, 0, n);
   a.pressure_gradient = g;
   a.tube_velocity = column_summary(table, "tube_velocity", a.from_time, Summary::mean);
   a.discharge_hematocrit = column_summary(table, "discharge_hematocrit", a.from_time, Summary::mean);

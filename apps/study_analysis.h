@@ -25,7 +25,9 @@ struct SteadyAverage {
   std::optional<double> tube_velocity, discharge_hematocrit, max_area_strain, cell_free_layer, min_wall_gap;
 };
 
-// Rows with time >= steady_fraction x the last time. Throws std::runtime_error naming the file
+// Rows with time >= steady_fraction x the last time; means are time means, each row weighted by
+// its step from the row before it (a run restarted at another time step writes rows of another
+// length; at one time step, the rows' means). Throws std::runtime_error naming the file
 // when it has no effective viscosity (no straight tube) or no rows in the steady part.
 SteadyAverage steady_average(const std::filesystem::path& diagnostics_csv, int axis, double steady_fraction);
 

@@ -126,6 +126,31 @@ TEST(StudyAnalysis, AveragesTheMeasuredTubeColumns) {
   fs::remove(old);
 }
 
+// A run restarted at half the time step: 50 rows of dt = 0.02 over (0, 1] with mu = 1, then
+// 100 rows of dt = 0.01 over (1, 2] with mu = 2. From t = 0.5 each row holds over its step: mu
+// = 1 over (0.48, 1] (the row at t = 0.5 covers its step) and 2 over (1, 2], a time mean of
+// (0.52 + 2) / 1.52; the mean of the rows would be (26 + 200) / 126 = 1.79.
+TEST(StudyAnalysis, SteadyMeansAreTimeMeans) {
+  const fs::path path = fs::temp_directory_path() / "rbcflow_test_study_analysis_two_steps.csv";
+  fs::remove(path);
+  {
+    CsvWriter csv(path, {"step", "time", "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z",
+                         "effective_viscosity", "tube_velocity"});
+    for (int i = 1; i <= 150; ++i) {
+      const bool fine = i > 50;
+      const double t = fine ? 1.0 + 0.01 * (i - 50) : 0.02 * i;
+      csv.write({std::to_string(i), csv_number(t), "0", "0", fine ? "-20" : "-10", fine ? "2" : "1", fine ? "4" : "3"});
+    }
+  }
+  const cli::SteadyAverage a = cli::steady_average(path, 2, 0.25);
+  EXPECT_EQ(a.rows, 126);
+  EXPECT_NEAR(a.mean, 2.52 / 1.52, 1e-12);
+  EXPECT_NEAR(a.pressure_gradient, -(0.52 * 10 + 20) / 1.52, 1e-12);
+  ASSERT_TRUE(a.tube_velocity);
+  EXPECT_NEAR(*a.tube_velocity, (0.52 * 3 + 4) / 1.52, 1e-12);
+  fs::remove(path);
+}
+
 // A bifurcation's branches.csv written by hand: over 100 steps the parent carries 2.0, alpha
 // 1.25 and beta 0.75; every 4th step a cell passes the parent, and of those, two in three go
 // to alpha. Over the second half (t >= 0.5: steps 50..100) the blood fraction is 0.625, and
