@@ -63,16 +63,23 @@ long Communicator::sum(long value) const {
 
 namespace {
 
-// Checks the pieces' counts against the ranks and the lengths, and returns their offsets.
-std::vector<int> piece_offsets(std::span<const int> counts, int ranks, std::size_t total, std::size_t mine, int rank) {
-  if (static_cast<int>(counts.size()) != ranks) throw std::invalid_argument("Communicator: one piece count per rank");
+// Offsets of consecutive pieces of these counts, checked against the ranks and the length.
+std::vector<int> offsets_of(std::span<const int> counts, int ranks, std::size_t length) {
+  if (static_cast<int>(counts.size()) != ranks) throw std::invalid_argument("Communicator: one count per rank");
   std::vector<int> offsets(counts.size(), 0);
   long sum = 0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
     offsets[r] = static_cast<int>(sum);
     sum += counts[r];
   }
-  if (sum != static_cast<long>(total) || static_cast<std::size_t>(counts[static_cast<std::size_t>(rank)]) != mine)
+  if (sum != static_cast<long>(length)) throw std::invalid_argument("Communicator: the counts do not match the lengths given");
+  return offsets;
+}
+
+// offsets_of, and this rank's piece checked to hold `mine` values.
+std::vector<int> piece_offsets(std::span<const int> counts, int ranks, std::size_t total, std::size_t mine, int rank) {
+  std::vector<int> offsets = offsets_of(counts, ranks, total);
+  if (static_cast<std::size_t>(counts[static_cast<std::size_t>(rank)]) != mine)
     throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
   return offsets;
 }
@@ -100,24 +107,11 @@ void Communicator::gather_pieces(std::span<const double> mine, std::span<double>
 
 namespace {
 
-// Offsets of consecutive pieces of these counts, checked against the ranks and the length.
-std::vector<int> exchange_offsets(std::span<const int> counts, int ranks, std::size_t length) {
-  if (static_cast<int>(counts.size()) != ranks) throw std::invalid_argument("Communicator: one exchange count per rank");
-  std::vector<int> offsets(counts.size(), 0);
-  long sum = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    offsets[r] = static_cast<int>(sum);
-    sum += counts[r];
-  }
-  if (sum != static_cast<long>(length)) throw std::invalid_argument("Communicator: the exchange counts do not match the lengths given");
-  return offsets;
-}
-
 template <class T>
 void exchange_values(std::span<const T> out, std::span<const int> send_counts, std::span<T> in,
                      std::span<const int> recv_counts, int ranks, MPI_Datatype type, MPI_Comm comm) {
-  const std::vector<int> send_offsets = exchange_offsets(send_counts, ranks, out.size());
-  const std::vector<int> recv_offsets = exchange_offsets(recv_counts, ranks, in.size());
+  const std::vector<int> send_offsets = offsets_of(send_counts, ranks, out.size());
+  const std::vector<int> recv_offsets = offsets_of(recv_counts, ranks, in.size());
   if (ranks == 1) {
     std::copy(out.begin(), out.end(), in.begin());
     return;
