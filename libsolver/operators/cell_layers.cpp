@@ -210,8 +210,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   }
   if (single_density_) {
     if (!single_regular) single_regular = regular_single_layer(*single_density_);  // free space, or no plan here
-    single_layer_ = *single_regular + single_corrections;
-    domain_.ranks.sum(*single_layer_);
+    single_part_ = *single_regular + single_corrections;
     single_plan_.reset();
   }
 }
@@ -327,15 +326,19 @@ Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd
 }
 
 Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
-  if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
-  if (single_layer_) {
-    if (f != *single_density_)
-      throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
-    return *single_layer_;
-  }
-  Eigen::MatrixXd u = regular_single_layer(f) + apply_corrections(Layer::single, f);
+  Eigen::MatrixXd u = single_layer_part(f);
   domain_.ranks.sum(u);
   return u;
+}
+
+Eigen::MatrixXd CellLayers::single_layer_part(const Eigen::MatrixXd& f) {
+  if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
+  if (single_part_) {
+    if (f != *single_density_)
+      throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
+    return *single_part_;
+  }
+  return regular_single_layer(f) + apply_corrections(Layer::single, f);
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
@@ -373,7 +376,7 @@ void CellLayers::report_memory(MemoryReport& report) const {
   for (const auto& c : cells_)
     if (c) geometry += c->memory_bytes();
   report.add("cell geometry", geometry);
-  if (single_layer_) report.add("single layer of the step's traction", matrix_bytes(*single_layer_) + matrix_bytes(*single_density_));
+  if (single_part_) report.add("single layer of the step's traction", matrix_bytes(*single_part_) + matrix_bytes(*single_density_));
   for (int c = owned_.begin; c < owned_.end; ++c) {
     if (self_single_[c]) self_single_[c]->report_memory(report, "self corrections");
     if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", !self_single_[c]);

@@ -77,7 +77,7 @@ class CellLayers {
   // only one a time step needs (its traction, in every sweep of the step), is computed here,
   // each cell's single-layer corrections applied as soon as they are built and freed, and the
   // single-layer Ewald plan freed after its one product: kept, they were a third of a step's
-  // memory. single_layer(f) then returns it, for that density only.
+  // memory. single_layer(f) and single_layer_part(f) then return it, for that density only.
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
              const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true,
              SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr);
@@ -102,6 +102,10 @@ class CellLayers {
 
   // Throws std::logic_error for another density than the one given to the constructor, if one was.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
+  // This rank's part of single_layer(f), at every node: its cells' corrections and nodes as
+  // sources, its slab of the grid; zero at the nodes beyond the real-space cutoff and the near
+  // distance of its cells and off its slab. single_layer(f) is the sum of the ranks' parts.
+  Eigen::MatrixXd single_layer_part(const Eigen::MatrixXd& f);
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u);
   // This rank's part of double_layer(u), at every node: its cells' corrections and nodes as
   // sources, its slab of the grid. double_layer(u) is the sum of the ranks' parts; a caller
@@ -145,9 +149,9 @@ class CellLayers {
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
-  // With a single_layer_density: that density and its single layer (the corrections and the
-  // single-layer plan above are then empty).
-  std::optional<Eigen::MatrixXd> single_density_, single_layer_;
+  // With a single_layer_density: that density and this rank's part of its single layer (the
+  // corrections and the single-layer plan above are then empty).
+  std::optional<Eigen::MatrixXd> single_density_, single_part_;
   bool with_double_layer_ = true;
   CellLayersTimings timings_;
 };

@@ -254,21 +254,20 @@ FlowSolution CellStepper::solve() const {
   // solution (out); see solve_cell_velocity.
   auto solve_cells = [&](const Eigen::MatrixXd& guess, Eigen::MatrixXd* image) {
     Eigen::MatrixXd background(nc * np, 3);
+    std::optional<Eigen::MatrixXd> wall_velocity_part;
     if (options_.domain.box) {
       background.rowwise() = s.mean_velocity.transpose();
       if (wall_) {
         // Each rank evaluates the wall's near field and real-space sum at its own cells' nodes
-        // and the smooth part on its slab of the grid; the ranks' parts add up.
-        const Communicator& ranks = options_.domain.ranks;
+        // and the smooth part on its slab of the grid; the ranks' parts add up in the solve.
         const OwnedRange& owned = layers->owned();
         if (!wall_at_cells) {
           ScopedTimer timer(timing.wall_at_cells_build);
-          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x, TargetRows{owned.begin * np, owned.end * np}, ranks));
+          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x, TargetRows{owned.begin * np, owned.end * np},
+                                                   options_.domain.ranks));
         }
         ScopedTimer timer(timing.wall_at_cells);
-        Eigen::MatrixXd wall_velocity = WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
-        ranks.sum(wall_velocity);
-        background += wall_velocity;
+        wall_velocity_part = WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
       }
     } else {
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
@@ -278,7 +277,8 @@ FlowSolution CellStepper::solve() const {
     ScopedTimer products_timer(timing.cell_products);
     const VelocitySolve v =
         solve_cell_velocity(*layers, *traction, lambda, background, std::max(options_.gmres_tolerance, sweep_tolerance),
-                            options_.gmres_max_iterations, guess, image);
+                            options_.gmres_max_iterations, guess, image,
+                            wall_velocity_part ? &*wall_velocity_part : nullptr);
     products_timer.stop();
     timing.cell_corrections = layers->build_timings().applied;
     const EwaldTimings& ewald = layers->build_timings().double_layer_ewald;

@@ -9,25 +9,40 @@ namespace rbcflow {
 
 VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& traction, double viscosity_ratio,
                                   const Eigen::MatrixXd& background, double tolerance, int max_iterations,
-                                  const Eigen::MatrixXd& initial_guess, Eigen::MatrixXd* image) {
+                                  const Eigen::MatrixXd& initial_guess, Eigen::MatrixXd* image,
+                                  const Eigen::MatrixXd* background_part) {
   const double lam = viscosity_ratio, pi = std::numbers::pi;
   if (!(lam > 0)) throw std::invalid_argument("solve_cell_velocity: viscosity ratio must be positive");
-  const Eigen::MatrixXd rhs = -layers.single_layer(traction) / (4 * pi * (1 + lam)) + (2 / (1 + lam)) * background;
-  VelocitySolve s;
-  if (lam == 1.0) {
-    s.velocity = rhs;
-    s.gmres.converged = true;
-    if (image) *image = rhs;
-    return s;
-  }
+  const Eigen::Index total = layers.nodes().size();
+  if (background.rows() != total || background.cols() != 3 ||
+      (background_part && (background_part->rows() != total || background_part->cols() != 3)))
+    throw std::invalid_argument("solve_cell_velocity: background is not one row a node");
   // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product brings the
   // rows of the density this rank reads (its cells' and those its slab of the grid spreads)
   // from their owners, and each rank receives only its rows of the sum of the ranks' parts,
-  // from the ranks whose parts reach them. The parts' uniform term is summed apart.
+  // from the ranks whose parts reach them. The parts' uniform term is summed apart. The
+  // right-hand side arrives the same way: each rank's part of N f and of the background.
   const Communicator& ranks = layers.domain().ranks;
   OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), ranks);
-  if (ranks.size() > 1) rows.read_only(layers.density_rows());
   const Eigen::Index n = rows.rows();
+  Eigen::MatrixXd b_mine;
+  if (ranks.size() == 1) {
+    const Eigen::MatrixXd u_b = background_part ? Eigen::MatrixXd(background + *background_part) : background;
+    b_mine = -layers.single_layer(traction) / (4 * pi * (1 + lam)) + (2 / (1 + lam)) * u_b;
+  } else {
+    Eigen::MatrixXd part = -layers.single_layer_part(traction) / (4 * pi * (1 + lam));
+    if (background_part) part += (2 / (1 + lam)) * *background_part;
+    b_mine = rows.sum_mine(part) + (2 / (1 + lam)) * rows.mine(background);
+  }
+  VelocitySolve s;
+  if (lam == 1.0) {
+    s.velocity = rows.gather(b_mine);
+    s.gmres.converged = true;
+    s.rows_received = rows.rows_received();
+    if (image) *image = s.velocity;
+    return s;
+  }
+  if (ranks.size() > 1) rows.read_only(layers.density_rows());
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const Eigen::Map<const Eigen::MatrixXd> u(v.data(), n, 3);
@@ -47,11 +62,11 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(m.data(), m.size()));
   };
   auto gathered = [&](const Eigen::VectorXd& v) { return rows.gather(Eigen::Map<const Eigen::MatrixXd>(v.data(), n, 3)); };
-  const Eigen::VectorXd b = mine(rhs);
-  const bool guessed = initial_guess.rows() == rhs.rows() && initial_guess.cols() == 3;
+  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(b_mine.data(), b_mine.size());
+  const bool guessed = initial_guess.rows() == total && initial_guess.cols() == 3;
   Eigen::VectorXd x = guessed ? mine(initial_guess) : b;
   Eigen::VectorXd Ax;
-  if (image && guessed && image->rows() == rhs.rows() && image->cols() == 3) Ax = mine(*image);
+  if (image && guessed && image->rows() == total && image->cols() == 3) Ax = mine(*image);
   s.gmres = gmres(A, b, x, tolerance, max_iterations, 60, image ? &Ax : nullptr, SplitInnerProducts{layers.domain().ranks});
   s.rows_received = rows.rows_received();
   s.velocity = gathered(x);

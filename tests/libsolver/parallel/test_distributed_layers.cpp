@@ -325,6 +325,48 @@ TEST(DistributedLayers, CellVelocitySolveOnTheRanksEqualsOneRank) {
   }
 }
 
+// The right-hand side of (10) from the ranks' parts (cell_velocity.h): the single layer of the
+// traction (the layers built for that density, as a time step builds them) and a background
+// that is the sum of the ranks' parts (the wall's velocity at the cells) reach each rank only as
+// its rows of their sums. The velocity equals one rank's with the whole background, for lambda
+// = 5 (GMRES) and lambda = 1 (the right-hand side itself), the same bits on every rank.
+TEST(DistributedLayers, RightHandSideFromTheRanksPartsEqualsOneRank) {
+  const Communicator world = Communicator::world();
+  const int N = 8, P = world.size();
+  const auto grids = CellGrids::make(N, 2 * N);
+  LayerDomain one{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+  LayerDomain shared = one;
+  shared.ranks = world;
+  const std::vector<SHCoeffs> cells = three_cells(N);
+  const CellLayers probe(cells, grids, one, {}, false);
+  const Eigen::MatrixXd f = smooth_density(probe.nodes().x);
+  const Eigen::MatrixXd wall = smooth_density(probe.nodes().x + probe.nodes().normal);
+  // Each rank's part of the wall's velocity: every P-th row, so the parts sum to it exactly.
+  Eigen::MatrixXd part = Eigen::MatrixXd::Zero(wall.rows(), 3);
+  for (Eigen::Index r = world.rank(); r < wall.rows(); r += P) part.row(r) = wall.row(r);
+  const Eigen::MatrixXd mean = Eigen::RowVector3d(0.0, 0.0, 1.0).replicate(wall.rows(), 1);
+  const Eigen::MatrixXd whole = mean + wall;
+  for (const double lambda : {5.0, 1.0}) {
+    CellLayers serial(cells, grids, one, {}, true, nullptr, &f), distributed(cells, grids, shared, {}, true, nullptr, &f);
+    const VelocitySolve a = solve_cell_velocity(serial, f, lambda, whole, 1e-10, 100);
+    const VelocitySolve b = solve_cell_velocity(distributed, f, lambda, mean, 1e-10, 100, {}, nullptr, &part);
+    ASSERT_TRUE(a.gmres.converged);
+    EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
+    const double dv = relative(b.velocity, a.velocity);
+    std::printf("  lambda %.0f: %d iterations, velocity %.1e from one rank's, %ld rows received\n", lambda,
+                a.gmres.iterations, dv, b.rows_received);
+    EXPECT_LT(dv, 1e-13);  // as CellVelocitySolveOnTheRanksEqualsOneRank
+    EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
+    if (P == 1) {
+      EXPECT_EQ(b.velocity, a.velocity);  // the same sums in the same order
+    }
+  }
+  CellLayers layers(cells, grids, shared, {}, false, nullptr, &f);
+  EXPECT_THROW(solve_cell_velocity(layers, f, 1.0, mean.topRows(5), 1e-10, 100), std::invalid_argument);
+  const Eigen::MatrixXd short_part = part.topRows(5);
+  EXPECT_THROW(solve_cell_velocity(layers, f, 1.0, mean, 1e-10, 100, {}, nullptr, &short_part), std::invalid_argument);
+}
+
 // The wall solve's recycled Krylov space split over the ranks with GMRES's vectors (each rank
 // its segment of the nodes): the seeds give as many directions as on one rank, a later solve
 // takes the same iterations to the same force, the same on every rank, and each rank holds
