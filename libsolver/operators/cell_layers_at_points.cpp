@@ -73,8 +73,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     Eigen::MatrixXd corrections = Eigen::MatrixXd::Zero(points_.rows(), 3);
     for (int c = owned.begin; c < owned.end; ++c)
       for (std::size_t k = 0; k < near_[c].rows.size(); ++k) corrections.row(near_[c].rows[k]) += near_single[c].row(k);
-    single_layer_ = regular_single_layer(*single_density_) + corrections;
-    domain.ranks.sum(*single_layer_);
+    single_part_ = regular_single_layer(*single_density_) + corrections;
     single_plan_.reset();
   }
 }
@@ -116,19 +115,29 @@ Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::Matrix
 }
 
 Eigen::MatrixXd CellLayersAtPoints::single_layer(const Eigen::MatrixXd& f) const {
-  const SourceNodes& nodes = layers_.nodes();
-  if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
-  if (single_layer_) {
-    if (f != *single_density_)
-      throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
-    return *single_layer_;
-  }
-  Eigen::MatrixXd u = regular_single_layer(f) + corrections(Layer::single, f);
+  Eigen::MatrixXd u = single_layer_part(f);
   layers_.domain().ranks.sum(u);
   return u;
 }
 
 Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const {
+  Eigen::MatrixXd v = double_layer_part(u);
+  layers_.domain().ranks.sum(v);
+  return v;
+}
+
+Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) const {
+  const SourceNodes& nodes = layers_.nodes();
+  if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
+  if (single_part_) {
+    if (f != *single_density_)
+      throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
+    return *single_part_;
+  }
+  return regular_single_layer(f) + corrections(Layer::single, f);
+}
+
+Eigen::MatrixXd CellLayersAtPoints::double_layer_part(const Eigen::MatrixXd& u) const {
   const SourceNodes& nodes = layers_.nodes();
   if (u.rows() != nodes.size() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
   if (!layers_.has_double_layer()) throw std::logic_error("CellLayersAtPoints::double_layer: built without the double layer");
@@ -146,13 +155,12 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
     v = regular_layer_sum(owned_sources(), owned_rows(u), LayerKernel{Layer::double_, 0.0}, points_);
   }
   v += corrections(Layer::double_, u);
-  layers_.domain().ranks.sum(v);
   return v;
 }
 
 void CellLayersAtPoints::report_memory(MemoryReport& report, const std::string& prefix) const {
   report.add(prefix + " near corrections: targets", matrix_bytes(points_));
-  if (single_layer_) report.add(prefix + " single layer of the step's traction", matrix_bytes(*single_layer_) + matrix_bytes(*single_density_));
+  if (single_part_) report.add(prefix + " single layer of the step's traction", matrix_bytes(*single_part_) + matrix_bytes(*single_density_));
   for (const Near& n : near_) {
     report.add(prefix + " near corrections: targets", heap_bytes(n.rows));
     if (n.single) n.single->report_memory(report, prefix + " near corrections");

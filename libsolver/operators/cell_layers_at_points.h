@@ -32,6 +32,10 @@ class CellLayersAtPoints {
   // single_layer throws std::logic_error for another density than the constructor's, if given.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u) const;
+  // This rank's parts of the two (its cells as sources, its slab of the grid): the layers are
+  // the sums of the ranks' parts, which a caller that needs only some rows sums itself.
+  Eigen::MatrixXd single_layer_part(const Eigen::MatrixXd& f) const;
+  Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u) const;
 
  private:
   struct Near {
@@ -51,7 +55,7 @@ class CellLayersAtPoints {
   Eigen::MatrixXd points_;
   std::vector<Near> near_;  // per cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
-  std::optional<Eigen::MatrixXd> single_density_, single_layer_;
+  std::optional<Eigen::MatrixXd> single_density_, single_part_;  // the part, of single_layer_density
 };
 
 }  // namespace rbcflow

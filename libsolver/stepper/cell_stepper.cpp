@@ -215,27 +215,30 @@ FlowSolution CellStepper::solve() const {
   }
   double sweep_tolerance = 0;  // > 0: the start sweeps' looser tolerance (below)
   auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
-    PointField v = PointField::Zero(wall_->nodes().rows(), 3);
+    // The cells' velocity at the wall nodes, this rank's part of it (its cells as sources, its
+    // slab of the grid): the wall solve sums the ranks' parts, each rank its segment of nodes.
+    const PointField none = PointField::Zero(wall_->nodes().rows(), 3);
+    PointField v = none;
     if (at_wall) {
       ScopedTimer timer(timing.at_wall_products);
-      v -= at_wall->single_layer(*traction) / (8 * kPi);
-      if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer(U);
+      v -= at_wall->single_layer_part(*traction) / (8 * kPi);
+      if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer_part(U);
     }
     WallSolution w;
     ScopedTimer solve_timer(timing.wall_solve);
     if (options_.pressure_gradient) {
-      w = wall_->solve(v, {});
+      w = wall_->solve(none, {}, 0, &v);
       s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient, w.force);
       w.force += wall_->force_for_mean_velocity(s.mean_velocity);
     } else if (options_.tube_velocity) {
       // The guess's <u> part lies in the recycled space of the unit solves (tube_drive.h).
-      w = wall_->solve(v, guess, sweep_tolerance);
+      w = wall_->solve(none, guess, sweep_tolerance, &v);
       const int a = options_.tube->axis;
       const double at_rest = wall_->pressure_gradient(w.force)[a];
       s.mean_velocity = Eigen::Vector3d::Unit(a) * tube_meter_->mean_velocity_for(*options_.tube_velocity, at_rest);
       w.force += wall_->force_for_mean_velocity(s.mean_velocity);
     } else {
-      w = wall_->solve(v.rowwise() + s.mean_velocity.transpose(), guess, sweep_tolerance);
+      w = wall_->solve(none.rowwise() + s.mean_velocity.transpose(), guess, sweep_tolerance, &v);
     }
     solve_timer.stop();
     s.wall_force = w.force;

@@ -20,11 +20,11 @@ WallCoupling::WallCoupling(std::shared_ptr<const WallElements> wall, const Perio
   if (options_.recycle > 0) unit_forces();  // the seeds of the recycled Krylov space
 }
 
-WallSolution WallCoupling::solve(const PointField& v, const PointField& guess, double looser) {
-  if (looser <= options_.tolerance) return solver_.solve(v, 1.0, options_, guess);
+WallSolution WallCoupling::solve(const PointField& v, const PointField& guess, double looser, const PointField* v_part) {
+  if (looser <= options_.tolerance) return solver_.solve(v, 1.0, options_, guess, v_part);
   WallSolveOptions options = options_;
   options.tolerance = looser;
-  return solver_.solve(v, 1.0, options, guess);
+  return solver_.solve(v, 1.0, options, guess, v_part);
 }
 
 Eigen::Vector3d WallCoupling::pressure_gradient(const PointField& force) const {

@@ -30,8 +30,10 @@ class WallCoupling {
   const PeriodicBox& box() const { return box_; }
 
   // F for the velocity `v` the wall must cancel at its nodes (mu = 1); `guess` may be empty.
-  // A `looser` relative residual than the options' applies to this solve alone.
-  WallSolution solve(const PointField& v, const PointField& guess, double looser = 0);
+  // A `looser` relative residual than the options' applies to this solve alone. `v_part`:
+  // this rank's part of a further velocity summed over the ranks (WallSolver::solve).
+  WallSolution solve(const PointField& v, const PointField& guess, double looser = 0,
+                     const PointField* v_part = nullptr);
   // <grad p> of (8) for a wall force.
   Eigen::Vector3d pressure_gradient(const PointField& force) const;
   // The mean velocity that gives `target` = <grad p> when the cells alone induce a wall force

@@ -32,13 +32,23 @@ WallSolver::WallSolver(WallOperator op, const WallSolveOptions& options)
 }
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
-                               const PointField& initial_guess) {
+                               const PointField& initial_guess, const PointField* velocity_part) {
   // GMRES's vectors (the Krylov basis, the recycled space) are this rank's segment of the nodes
   // (parallel/owned_rows.h), those of its rows of the operator; a product gathers the whole
   // vector first (it needs every node's density). The preconditioner reads and writes only the
   // segment when the segments are its blocks' (wall_node_segments), else it gathers too.
   const OwnedSegments& nodes = op_.segments();
-  const Eigen::VectorXd b = nodes.mine((8.0 * std::numbers::pi * mu) * to_vector(velocity));
+  if (velocity_part && (velocity_part->rows() != velocity.rows() || velocity_part->cols() != velocity.cols()))
+    throw std::invalid_argument("WallSolver::solve: the velocity's part is not one row a node");
+  const double scale = 8.0 * std::numbers::pi * mu;
+  Eigen::VectorXd b;
+  if (!velocity_part) {
+    b = nodes.mine(scale * to_vector(velocity));
+  } else if (op_.ranks().size() == 1) {
+    b = nodes.mine(scale * to_vector(velocity + *velocity_part));
+  } else {
+    b = nodes.mine(scale * to_vector(velocity)) + nodes.sum_mine(scale * to_vector(*velocity_part));
+  }
   Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? nodes.mine(to_vector(initial_guess))
                                                               : Eigen::VectorXd::Zero(b.size());
   auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f))); };

@@ -48,9 +48,12 @@ class WallSolver {
   explicit WallSolver(WallOperator op, const WallSolveOptions& options = {});
 
   // Throws std::runtime_error when GMRES stops unconverged. `initial_guess` (one row per node,
-  // or empty for zero) is typically the previous step's force.
+  // or empty for zero) is typically the previous step's force. `velocity_part` (one row per
+  // node), when given: this rank's part of a further velocity that is the sum of the ranks'
+  // parts (the cells' layers at the wall, CellLayersAtPoints), added to `velocity`; each rank
+  // then receives only its segment of that sum, never the whole.
   WallSolution solve(const PointField& velocity, double mu, const WallSolveOptions& options = {},
-                     const PointField& initial_guess = {});
+                     const PointField& initial_guess = {}, const PointField* velocity_part = nullptr);
 
   // Solves for each velocity in turn, keeping the Krylov directions of these solves (up to
   // options.recycle) for all later ones: the same seeds give the same space, so a run and its

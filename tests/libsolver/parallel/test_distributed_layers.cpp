@@ -618,6 +618,41 @@ TEST(DistributedWall, SolveOnTheRanksEqualsOneRank) {
   }
 }
 
+// The wall solve for a velocity given as the ranks' parts (the cells' layers at the wall, each
+// rank's cells as sources) plus a whole one (the mean velocity): each rank receives only its
+// segment of the parts' sum. Here each rank's part is every P-th node's row of a field, so the
+// sum is exact; one rank adds the two before scaling, the ranks after (an ulp in the
+// right-hand side), so on one rank the force is the same bits, on several within the bound of
+// SolveOnTheRanksEqualsOneRank.
+TEST(DistributedWall, VelocityFromTheRanksPartsEqualsOneRank) {
+  const auto e = small_tube();
+  const Communicator world = Communicator::world();
+  const int P = world.size();
+  WallSolver one(tube_wall_operator(e));
+  WallSolver shared(tube_wall_operator(e, world));
+  const PointField& x = e->wall.surface.points;
+  PointField cells(x.rows(), 3);
+  cells.col(0) = (x.col(2).array() * 0.7).sin() * 0.2;
+  cells.col(1) = x.col(0) * 0.1;
+  cells.col(2) = 1.0 + 0.3 * (x.col(1).array() * 1.3).cos();
+  PointField part = PointField::Zero(x.rows(), 3);
+  for (Eigen::Index r = world.rank(); r < x.rows(); r += P) part.row(r) = cells.row(r);
+  const PointField mean = Eigen::RowVector3d(0.0, 0.0, 1.0).replicate(x.rows(), 1);
+  const WallSolution a = one.solve(PointField(mean + cells), 1.0);
+  const WallSolution b = shared.solve(mean, 1.0, {}, {}, &part);
+  EXPECT_EQ(a.gmres.iterations, b.gmres.iterations);
+  const double d = force_difference(a, b);
+  std::printf("  wall force from the ranks' parts %.1e from one rank's, %d iterations\n", d, b.gmres.iterations);
+  if (P > 1) {
+    EXPECT_LT(d, 1e-12);
+  } else {
+    EXPECT_EQ(d, 0.0);
+  }
+  EXPECT_EQ(spread_over_ranks(world, b.force), 0.0);
+  const PointField short_part = part.topRows(4);
+  EXPECT_THROW(shared.solve(mean, 1.0, {}, {}, &short_part), std::invalid_argument);
+}
+
 // The wall's velocity at points shared by the ranks (wall_operator.h, TargetRows): each rank's
 // near field and real space at its block of the points, the smooth part on its slab at every
 // point; the ranks' sum equals the operator at every point on one rank, to the rounding of the
