@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
     double best_step = 1e300, best_cpu = 1e300;
     KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
-    long last_rows_received = 0, last_nodes = 0;
-    int last_iterations = 0;
+    long last_rows_received = 0, last_nodes = 0, last_wall_received = 0;
+    int last_iterations = 0, last_wall_iterations = 0;
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
     for (int k = 1; k <= steps; ++k) {
@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
       if (k <= 2) std::printf("       peak memory after step %d: %.0f MB\n", k, peak_resident_mb());
       memory = s.memory;
       last_rows_received = s.cell_rows_received;
+      last_wall_received = s.wall_nodes_received;
+      last_wall_iterations = s.gmres_wall;
       last_iterations = s.gmres_cells;
       last_nodes = s.velocity.rows();
       std::fflush(stdout);
@@ -157,6 +159,9 @@ int main(int argc, char** argv) {
     if (ranks.size() > 1) {
       std::fprintf(stderr, "rank %d: %ld node rows received in the last step's products of (10), %d GMRES iterations, %ld cell nodes\n",
                    ranks.rank(), last_rows_received, last_iterations, last_nodes);
+      if (stepper->wall())
+        std::fprintf(stderr, "rank %d: %ld wall nodes received in the last step's wall solves, %d GMRES iterations, %d wall nodes\n",
+                     ranks.rank(), last_wall_received, last_wall_iterations, stepper->wall()->elements().num_nodes());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_step: %s\n", e.what());

@@ -212,6 +212,58 @@ Eigen::VectorXd OwnedSegments::sum_mine(const Eigen::VectorXd& part) const {
   return sum;
 }
 
+void OwnedSegments::read_only(const std::vector<int>& needed) {
+  const int p = ranks_.size();
+  if (!std::is_sorted(needed.begin(), needed.end()) || (!needed.empty() && (needed.front() < 0 || needed.back() >= total_)))
+    throw std::invalid_argument("OwnedSegments::read_only: the nodes must be ascending nodes of the whole");
+  std::vector<int> first{0};  // every rank's first position in the order
+  for (int n : counts_) first.push_back(first.back() + n / 3);
+  read_nodes_.assign(static_cast<std::size_t>(p), {});
+  for (int i : needed) {
+    const int k = order_.empty() ? i : place_[i];
+    if (begin_ <= k && k < end_) continue;
+    const auto r = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), k) - first.begin() - 1);
+    if (read_nodes_[r].empty() || read_nodes_[r].back() != i) read_nodes_[r].push_back(i);
+  }
+  // Each rank tells each owner which of its nodes it reads.
+  const std::vector<int> counts = values_per_rank(read_nodes_, 1);
+  const std::vector<int> recv_counts = ranks_.exchange_counts(counts);
+  std::vector<int> out, in;
+  for (const std::vector<int>& of_rank : read_nodes_) out.insert(out.end(), of_rank.begin(), of_rank.end());
+  long total = 0;
+  for (int n : recv_counts) total += n;
+  in.resize(static_cast<std::size_t>(total));
+  ranks_.exchange(out, counts, in, recv_counts);
+  send_nodes_.assign(static_cast<std::size_t>(p), {});
+  std::size_t k = 0;
+  for (int r = 0; r < p; ++r)
+    for (int n = 0; n < recv_counts[r]; ++n) send_nodes_[r].push_back(in[k++]);
+  read_all_ = false;
+}
+
+Eigen::VectorXd OwnedSegments::gather_read(const Eigen::VectorXd& mine) const {
+  if (read_all_) return gather(mine);
+  if (mine.size() != 3 * size()) throw std::invalid_argument("OwnedSegments::gather_read: not this rank's segment");
+  Eigen::VectorXd all = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(total_));
+  for (int k = 0; k < size(); ++k) all.segment<3>(3 * static_cast<Eigen::Index>(node(k))) = mine.segment<3>(3 * k);
+  if (ranks_.size() == 1) return all;
+  std::vector<double> out;
+  for (const std::vector<int>& of_rank : send_nodes_)
+    for (int i : of_rank)
+      for (int c = 0; c < 3; ++c) out.push_back(all[3 * static_cast<Eigen::Index>(i) + c]);
+  const std::vector<int> recv_counts = values_per_rank(read_nodes_, 3);
+  long received = 0;
+  for (int n : recv_counts) received += n;
+  std::vector<double> in(static_cast<std::size_t>(received));
+  ranks_.exchange(out, values_per_rank(send_nodes_, 3), in, recv_counts);
+  std::size_t k = 0;
+  for (const std::vector<int>& of_rank : read_nodes_)
+    for (int i : of_rank)
+      for (int c = 0; c < 3; ++c) all[3 * static_cast<Eigen::Index>(i) + c] = in[k++];
+  nodes_received_ += received / 3;
+  return all;
+}
+
 Eigen::VectorXd OwnedSegments::gather(const Eigen::VectorXd& mine) const {
   if (mine.size() != 3 * size()) throw std::invalid_argument("OwnedSegments::gather: not this rank's segment");
   Eigen::VectorXd all(3 * static_cast<Eigen::Index>(total_));

@@ -78,6 +78,15 @@ class OwnedSegments {
   // Every rank's segment (`mine` on each) in place, on every rank.
   Eigen::VectorXd gather(const Eigen::VectorXd& mine) const;
 
+  // The nodes this rank reads (`needed`, ascending; its own may be among them): after this,
+  // gather_read brings only those. Collective.
+  void read_only(const std::vector<int>& needed);
+  // A vector of every node with this rank's segment and the nodes of read_only's (all of them
+  // before read_only), zero elsewhere. Collective.
+  Eigen::VectorXd gather_read(const Eigen::VectorXd& mine) const;
+  // Nodes this rank has received from the others in gather_read so far.
+  long nodes_received() const { return nodes_received_; }
+
  private:
   // `all` (every node, node order) in the segments' order, and back.
   Eigen::VectorXd ordered(const Eigen::VectorXd& all) const;
@@ -89,6 +98,9 @@ class OwnedSegments {
   std::vector<int> order_;      // empty: the nodes' own
   std::vector<int> place_;      // place_[node]: its position in the order (with order_)
   std::vector<int> counts_;     // every rank's values: 3 per node
+  bool read_all_ = true;        // until read_only
+  std::vector<std::vector<int>> send_nodes_, read_nodes_;  // by rank: own nodes it reads, its nodes read here
+  mutable long nodes_received_ = 0;
 };
 
 // GMRES's inner products (linear/preconditioned_gmres.h) of vectors split by rows over the

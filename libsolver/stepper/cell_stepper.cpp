@@ -243,6 +243,7 @@ FlowSolution CellStepper::solve() const {
     solve_timer.stop();
     s.wall_force = w.force;
     s.gmres_wall += w.gmres.iterations;
+    s.wall_nodes_received += w.nodes_received;
     s.wall_residual = w.gmres.relative_residual;
     s.pressure_gradient = wall_->pressure_gradient(w.force);
     if (tube_meter_) {

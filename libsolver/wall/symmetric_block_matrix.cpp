@@ -126,6 +126,13 @@ Eigen::VectorXd SymmetricBlockMatrix::operator*(const Eigen::VectorXd& f) const 
   return y;
 }
 
+std::vector<int> SymmetricBlockMatrix::nodes_read() const {
+  std::vector<int> nodes = nodes_;
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 std::size_t SymmetricBlockMatrix::memory_bytes() const {
   return heap_bytes(offsets_) + heap_bytes(nodes_) + heap_bytes(blocks_) + heap_bytes(single_);
 }

@@ -40,6 +40,8 @@ class SymmetricBlockMatrix {
 
   // The product with nodal values (index 3 i + k); one value per target row.
   Eigen::VectorXd operator*(const Eigen::VectorXd& f) const;
+  // The nodes the product reads (those of some block), ascending.
+  std::vector<int> nodes_read() const;
 
  private:
   int num_nodes_;

@@ -137,6 +137,30 @@ Eigen::VectorXd WallOperator::apply_mine(const PointField& f) {
   return distributed ? segments_.sum_mine(v) : segments_.mine(v);
 }
 
+std::vector<int> WallOperator::density_nodes() const {
+  const int n = elements_->num_nodes();
+  if (!near_and_real_) {
+    std::vector<int> all(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) all[static_cast<std::size_t>(i)] = i;
+    return all;
+  }
+  std::vector<char> read(static_cast<std::size_t>(n), 0);
+  for (int i : near_and_real_->nodes_read()) read[static_cast<std::size_t>(i)] = 1;
+  const SpmeStencils::SpreadingMatrix& spreading = *node_spreading_;
+  for (Eigen::Index k = 0; k < spreading.outerSize(); ++k)
+    for (SpmeStencils::SpreadingMatrix::InnerIterator it(spreading, k); it; ++it) read[static_cast<std::size_t>(it.col())] = 1;
+  if (!near_.coincident.empty() && (!ewald_->smooth().grid().distributed() || ranks_.root())) {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> map = elements_->density_map();
+    for (const auto& [t, q] : near_.coincident)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(map, q); it; ++it)
+        read[static_cast<std::size_t>(it.col())] = 1;
+  }
+  std::vector<int> nodes;
+  for (int i = 0; i < n; ++i)
+    if (read[static_cast<std::size_t>(i)]) nodes.push_back(i);
+  return nodes;
+}
+
 void WallOperator::report_memory(MemoryReport& report, const std::string& prefix) const {
   report.add(prefix + ": near field", matrix_bytes(near_.correction) + matrix_bytes(near_.local) +
                                           heap_bytes(near_.coincident) + matrix_bytes(targets_));

@@ -79,6 +79,10 @@ class WallOperator {
   // the ranks' parts are summed only where the smooth part is split over them, and only into
   // each owner's segment. Without assembled rows: the segment of apply(f).
   Eigen::VectorXd apply_mine(const PointField& f);
+  // The nodes of f that apply_mine reads, ascending: with assembled rows, those of its rows'
+  // blocks, those whose Gauss points its slab of the grid spreads (every node on a whole grid)
+  // and, on the rank that adds them, the coincident pairs' triangles'; else every node.
+  std::vector<int> density_nodes() const;
   const Communicator& ranks() const { return ranks_; }
   // The targets split over the ranks: the assembled rows' segments, else blocks of the targets.
   const OwnedSegments& segments() const { return segments_; }

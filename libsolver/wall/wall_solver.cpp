@@ -27,16 +27,19 @@ const WallOperator& wall_targets(const WallOperator& op, const WallSolveOptions&
 WallSolver::WallSolver(WallOperator op, const WallSolveOptions& options)
     : op_(std::move(op)),
       preconditioner_(wall_targets(op_, options).near().local, op_.targets(), options.preconditioner_block_nodes, op_.ranks()),
-      local_preconditioner_(preconditioner_.matches(op_.segments())) {
+      local_preconditioner_(preconditioner_.matches(op_.segments())),
+      density_reads_(op_.segments()) {
   op_.release_local_near_field();  // the factorisations keep their own copies
+  if (op_.ranks().size() > 1) density_reads_.read_only(op_.density_nodes());
 }
 
 WallSolution WallSolver::solve(const PointField& velocity, double mu, const WallSolveOptions& options,
                                const PointField& initial_guess, const PointField* velocity_part) {
   // GMRES's vectors (the Krylov basis, the recycled space) are this rank's segment of the nodes
-  // (parallel/owned_rows.h), those of its rows of the operator; a product gathers the whole
-  // vector first (it needs every node's density). The preconditioner reads and writes only the
-  // segment when the segments are its blocks' (wall_node_segments), else it gathers too.
+  // (parallel/owned_rows.h), those of its rows of the operator; a product first brings from
+  // their owners the densities of the nodes it reads (its rows' blocks, the nodes its slab of the
+  // grid spreads). The preconditioner reads and writes only the segment when the segments are
+  // its blocks' (wall_node_segments), else it gathers the whole.
   const OwnedSegments& nodes = op_.segments();
   if (velocity_part && (velocity_part->rows() != velocity.rows() || velocity_part->cols() != velocity.cols()))
     throw std::invalid_argument("WallSolver::solve: the velocity's part is not one row a node");
@@ -51,18 +54,20 @@ WallSolution WallSolver::solve(const PointField& velocity, double mu, const Wall
   }
   Eigen::VectorXd x = initial_guess.rows() == velocity.rows() ? nodes.mine(to_vector(initial_guess))
                                                               : Eigen::VectorXd::Zero(b.size());
-  auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(nodes.gather(f))); };
+  auto A = [&](const Eigen::VectorXd& f) { return op_.apply_mine(to_field(density_reads_.gather_read(f))); };
   auto M_inv = [&](const Eigen::VectorXd& r) {
     return local_preconditioner_ ? preconditioner_.solve_segment(r, nodes)
                                  : preconditioner_.solve_mine(nodes.gather(r), nodes);
   };
   WallSolution s;
+  const long received = density_reads_.nodes_received();
   s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_,
                                  nullptr, SplitInnerProducts{op_.ranks()});
   if (!s.gmres.converged)
     throw std::runtime_error("wall solve did not converge: relative residual " +
                              std::to_string(s.gmres.relative_residual) + " after " +
                              std::to_string(s.gmres.iterations) + " GMRES iterations");
+  s.nodes_received = density_reads_.nodes_received() - received;
   x = nodes.gather(x);
   s.force = to_field(x);
   return s;

@@ -37,6 +37,7 @@ struct WallSolveOptions {
 struct WallSolution {
   PointField force;  // f at the nodes: the force density the fluid exerts on the wall
   GmresReport gmres;
+  long nodes_received = 0;  // nodes whose densities this rank's products brought from the others
 };
 
 class WallSolver {
@@ -64,6 +65,8 @@ class WallSolver {
   // Whether the operator's segments are the preconditioner's blocks' (wall_node_segments), so
   // that applying it moves nothing between the ranks.
   bool local_preconditioner() const { return local_preconditioner_; }
+  // Nodes this rank has received from the others for its products so far.
+  long nodes_received() const { return density_reads_.nodes_received(); }
   // "wall operator: ...", "wall preconditioner (LU)" (this rank's blocks), "wall recycled
   // space" (memory_report.h).
   void report_memory(MemoryReport& report) const;
@@ -74,6 +77,9 @@ class WallSolver {
   WallOperator op_;
   WallPreconditioner preconditioner_;
   bool local_preconditioner_;
+  // The operator's segments, reading only the nodes a product on this rank reads
+  // (WallOperator::density_nodes) when there are several ranks.
+  OwnedSegments density_reads_;
   RecycledSpace recycled_;
 };
 

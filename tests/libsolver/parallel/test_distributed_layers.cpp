@@ -286,6 +286,37 @@ TEST(OwnedSegments, OrderedSegmentsSumAndGather) {
   EXPECT_THROW(OwnedSegments(order, short_first, world), std::invalid_argument);
 }
 
+// Ordered segments reading only some nodes: the nodes read arrive exactly, each in its place,
+// with the rank's own segment; every other node is zero; only the other ranks' nodes count as
+// received.
+TEST(OwnedSegments, ReadOnlyTheNodesRead) {
+  const Communicator world = Communicator::world();
+  const int p = world.size(), me = world.rank(), n = 11;
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = (7 * k + 3) % n;
+  std::vector<int> first;
+  for (int r = 0; r <= p; ++r) first.push_back(r * n / p);
+  OwnedSegments segments(order, first, world);
+  Eigen::VectorXd all(3 * n);
+  for (Eigen::Index i = 0; i < all.size(); ++i) all[i] = static_cast<double>(i % 97 + 1);
+  // Nodes 0 and 9 (whoever owns them) and, on rank 0, its own first node.
+  std::vector<int> needed{0, 9};
+  if (me == 0 && segments.size() > 0) needed.push_back(segments.node(0));
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  segments.read_only(needed);
+  const Eigen::VectorXd read = segments.gather_read(segments.mine(all));
+  Eigen::VectorXd expected = Eigen::VectorXd::Zero(3 * n);
+  for (int k = 0; k < segments.size(); ++k) expected.segment<3>(3 * segments.node(k)) = all.segment<3>(3 * segments.node(k));
+  for (int i : needed) expected.segment<3>(3 * i) = all.segment<3>(3 * i);
+  EXPECT_EQ(read, expected);
+  long others = 0;
+  for (int i : {0, 9}) others += segments.position(i) >= 0 ? 0 : 1;
+  EXPECT_EQ(segments.nodes_received(), others);
+  EXPECT_THROW(segments.read_only({9, 0}), std::invalid_argument);
+  EXPECT_THROW(segments.read_only({0, n}), std::invalid_argument);
+}
+
 // The velocity of (10) solved with GMRES's vectors split by rows over the ranks (each rank its
 // cells' rows, inner products summed over the ranks): the same iterations as one rank, and the
 // same velocity to the rounding the products carry into the iterates, on every rank alike.
@@ -642,7 +673,8 @@ TEST(DistributedWall, VelocityFromTheRanksPartsEqualsOneRank) {
   const WallSolution b = shared.solve(mean, 1.0, {}, {}, &part);
   EXPECT_EQ(a.gmres.iterations, b.gmres.iterations);
   const double d = force_difference(a, b);
-  std::printf("  wall force from the ranks' parts %.1e from one rank's, %d iterations\n", d, b.gmres.iterations);
+  std::printf("  wall force from the ranks' parts %.1e from one rank's, %d iterations, %ld nodes received in all (the wall has %ld)\n", d,
+              b.gmres.iterations, shared.nodes_received(), static_cast<long>(x.rows()));
   if (P > 1) {
     EXPECT_LT(d, 1e-12);
   } else {
