@@ -56,6 +56,46 @@ std::vector<int> values_per_rank(const std::vector<std::vector<int>>& rows, int 
   return counts;
 }
 
+// Each rank tells each owner which of its items (rows, nodes) it reads (`read`, by owner);
+// returns, by rank, the items of this rank that the rank reads. Collective.
+std::vector<std::vector<int>> items_read_by(const Communicator& ranks, const std::vector<std::vector<int>>& read) {
+  const std::vector<int> counts = values_per_rank(read, 1);
+  const std::vector<int> recv_counts = ranks.exchange_counts(counts);
+  std::vector<int> out, in;
+  for (const std::vector<int>& of_rank : read) out.insert(out.end(), of_rank.begin(), of_rank.end());
+  long total = 0;
+  for (int n : recv_counts) total += n;
+  in.resize(static_cast<std::size_t>(total));
+  ranks.exchange(out, counts, in, recv_counts);
+  std::vector<std::vector<int>> send(static_cast<std::size_t>(ranks.size()));
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < send.size(); ++r)
+    for (int n = 0; n < recv_counts[r]; ++n) send[r].push_back(in[k++]);
+  return send;
+}
+
+// Sends each rank the 3 values of each of its items in `send` (by rank) and receives those of
+// each item in `read` (by owner), all through value(item, c) (a reference); returns the items
+// received. Collective.
+template <class Value>
+long exchange_read(const Communicator& ranks, const std::vector<std::vector<int>>& send,
+                   const std::vector<std::vector<int>>& read, Value&& value) {
+  std::vector<double> out;
+  for (const std::vector<int>& of_rank : send)
+    for (int i : of_rank)
+      for (int c = 0; c < 3; ++c) out.push_back(value(i, c));
+  const std::vector<int> recv_counts = values_per_rank(read, 3);
+  long received = 0;
+  for (int n : recv_counts) received += n;
+  std::vector<double> in(static_cast<std::size_t>(received));
+  ranks.exchange(out, values_per_rank(send, 3), in, recv_counts);
+  std::size_t k = 0;
+  for (const std::vector<int>& of_rank : read)
+    for (int i : of_rank)
+      for (int c = 0; c < 3; ++c) value(i, c) = in[k++];
+  return received / 3;
+}
+
 }  // namespace
 
 Eigen::MatrixXd OwnedRows::sum_mine(const Eigen::MatrixXd& part) const {
@@ -101,19 +141,7 @@ void OwnedRows::read_only(const std::vector<int>& needed) {
     while (!blocks_[r].contains(i)) ++r;
     if (read_rows_[r].empty() || read_rows_[r].back() != i) read_rows_[r].push_back(i);
   }
-  // Each rank tells each owner which of its rows it reads.
-  const std::vector<int> counts = values_per_rank(read_rows_, 1);
-  const std::vector<int> recv_counts = ranks_.exchange_counts(counts);
-  std::vector<int> out, in;
-  for (const std::vector<int>& of_rank : read_rows_) out.insert(out.end(), of_rank.begin(), of_rank.end());
-  long total = 0;
-  for (int n : recv_counts) total += n;
-  in.resize(static_cast<std::size_t>(total));
-  ranks_.exchange(out, counts, in, recv_counts);
-  send_rows_.assign(static_cast<std::size_t>(p), {});
-  std::size_t k = 0;
-  for (int r = 0; r < p; ++r)
-    for (int n = 0; n < recv_counts[r]; ++n) send_rows_[r].push_back(in[k++]);
+  send_rows_ = items_read_by(ranks_, read_rows_);
   read_all_ = false;
 }
 
@@ -123,17 +151,7 @@ Eigen::MatrixXd OwnedRows::gather_read(const Eigen::MatrixXd& mine) const {
   Eigen::MatrixXd all = Eigen::MatrixXd::Zero(total_, 3);
   all.middleRows(mine_.begin, mine_.size()) = mine;
   if (ranks_.size() == 1) return all;
-  const std::vector<double> out = packed(all, send_rows_);
-  const std::vector<int> recv_counts = values_per_rank(read_rows_, 3);
-  long received = 0;
-  for (int n : recv_counts) received += n;
-  std::vector<double> in(static_cast<std::size_t>(received));
-  ranks_.exchange(out, values_per_rank(send_rows_, 3), in, recv_counts);
-  std::size_t k = 0;
-  for (const std::vector<int>& of_rank : read_rows_)
-    for (int i : of_rank)
-      for (int c = 0; c < 3; ++c) all(i, c) = in[k++];
-  rows_received_ += received / 3;
+  rows_received_ += exchange_read(ranks_, send_rows_, read_rows_, [&](int i, int c) -> double& { return all(i, c); });
   return all;
 }
 
@@ -225,19 +243,7 @@ void OwnedSegments::read_only(const std::vector<int>& needed) {
     const auto r = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), k) - first.begin() - 1);
     if (read_nodes_[r].empty() || read_nodes_[r].back() != i) read_nodes_[r].push_back(i);
   }
-  // Each rank tells each owner which of its nodes it reads.
-  const std::vector<int> counts = values_per_rank(read_nodes_, 1);
-  const std::vector<int> recv_counts = ranks_.exchange_counts(counts);
-  std::vector<int> out, in;
-  for (const std::vector<int>& of_rank : read_nodes_) out.insert(out.end(), of_rank.begin(), of_rank.end());
-  long total = 0;
-  for (int n : recv_counts) total += n;
-  in.resize(static_cast<std::size_t>(total));
-  ranks_.exchange(out, counts, in, recv_counts);
-  send_nodes_.assign(static_cast<std::size_t>(p), {});
-  std::size_t k = 0;
-  for (int r = 0; r < p; ++r)
-    for (int n = 0; n < recv_counts[r]; ++n) send_nodes_[r].push_back(in[k++]);
+  send_nodes_ = items_read_by(ranks_, read_nodes_);
   read_all_ = false;
 }
 
@@ -247,20 +253,8 @@ Eigen::VectorXd OwnedSegments::gather_read(const Eigen::VectorXd& mine) const {
   Eigen::VectorXd all = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(total_));
   for (int k = 0; k < size(); ++k) all.segment<3>(3 * static_cast<Eigen::Index>(node(k))) = mine.segment<3>(3 * k);
   if (ranks_.size() == 1) return all;
-  std::vector<double> out;
-  for (const std::vector<int>& of_rank : send_nodes_)
-    for (int i : of_rank)
-      for (int c = 0; c < 3; ++c) out.push_back(all[3 * static_cast<Eigen::Index>(i) + c]);
-  const std::vector<int> recv_counts = values_per_rank(read_nodes_, 3);
-  long received = 0;
-  for (int n : recv_counts) received += n;
-  std::vector<double> in(static_cast<std::size_t>(received));
-  ranks_.exchange(out, values_per_rank(send_nodes_, 3), in, recv_counts);
-  std::size_t k = 0;
-  for (const std::vector<int>& of_rank : read_nodes_)
-    for (int i : of_rank)
-      for (int c = 0; c < 3; ++c) all[3 * static_cast<Eigen::Index>(i) + c] = in[k++];
-  nodes_received_ += received / 3;
+  nodes_received_ += exchange_read(ranks_, send_nodes_, read_nodes_,
+                                   [&](int i, int c) -> double& { return all[3 * static_cast<Eigen::Index>(i) + c]; });
   return all;
 }
 
