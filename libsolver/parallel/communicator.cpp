@@ -86,15 +86,6 @@ std::vector<int> piece_offsets(std::span<const int> counts, int ranks, std::size
 
 }  // namespace
 
-void Communicator::sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int> counts) const {
-  piece_offsets(counts, size_, values.size(), mine.size(), rank_);
-  if (size_ == 1) {
-    std::copy(values.begin(), values.end(), mine.begin());
-    return;
-  }
-  MPI_Reduce_scatter(values.data(), mine.data(), counts.data(), MPI_DOUBLE, MPI_SUM, comm_of(handle_));
-}
-
 void Communicator::gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int> counts) const {
   const std::vector<int> offsets = piece_offsets(counts, size_, all.size(), mine.size(), rank_);
   if (size_ == 1) {
@@ -202,10 +193,6 @@ void MpiSession::abort_all(int status) {
 Communicator Communicator::world() { return {}; }
 void Communicator::sum(std::span<double>) const {}
 long Communicator::sum(long value) const { return value; }
-void Communicator::sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int>) const {
-  if (values.size() != mine.size()) throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
-  std::copy(values.begin(), values.end(), mine.begin());
-}
 void Communicator::gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int>) const {
   if (all.size() != mine.size()) throw std::invalid_argument("Communicator: the pieces do not match the lengths given");
   std::copy(mine.begin(), mine.end(), all.begin());

@@ -2,8 +2,9 @@
 // The ranks that share a run (`mpirun -np P rbcflow run CASE.toml`). The state of a run (the
 // cells' shapes, the wall force, the wall solve's GMRES vectors) is replicated on every rank;
 // the work of the cells' operators is split by the cells each rank owns (ownership.h), and each
-// product is summed over the ranks with sum(), or with sum_pieces() where each rank keeps only
-// its cells' rows (the GMRES of (10), owned_rows.h). Every rank then takes the same decisions
+// product is summed over the ranks with sum(), or, where each rank keeps only its own rows (the
+// GMRES vectors of (10) and (12), owned_rows.h), by sending each owner the rows of its
+// part that are not zero (exchange). Every rank then takes the same decisions
 // (GMRES iterations, collisions, output steps) from the same numbers.
 //
 // A Communicator that is not world() in an MPI launch is one rank: sum() does nothing, and
@@ -35,10 +36,6 @@ class Communicator {
     sum(std::span<double>(values.data(), static_cast<std::size_t>(values.size())));
   }
   long sum(long value) const;
-  // Element-wise sum over the ranks, rank r receiving only its piece: `values` (the same length
-  // on every rank) is cut into consecutive pieces of counts[0], counts[1], ... values, and
-  // `mine` (counts[rank()] values) gets this rank's piece of the sum (MPI_Reduce_scatter).
-  void sum_pieces(std::span<const double> values, std::span<double> mine, std::span<const int> counts) const;
   // The ranks' pieces side by side in rank order, on every rank: `all` (the sum of counts
   // values) gets counts[r] values from rank r, whose `mine` holds them (MPI_Allgatherv).
   void gather_pieces(std::span<const double> mine, std::span<double> all, std::span<const int> counts) const;

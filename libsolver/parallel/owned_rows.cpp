@@ -41,15 +41,6 @@ Eigen::MatrixXd OwnedRows::mine(const Eigen::MatrixXd& all) const {
 
 namespace {
 
-// rows (ascending) as 3 values each, row after row, rank after rank.
-std::vector<double> packed(const Eigen::MatrixXd& m, const std::vector<std::vector<int>>& rows) {
-  std::vector<double> out;
-  for (const std::vector<int>& of_rank : rows)
-    for (int r : of_rank)
-      for (int c = 0; c < 3; ++c) out.push_back(m(r, c));
-  return out;
-}
-
 std::vector<int> values_per_rank(const std::vector<std::vector<int>>& rows, int per_row) {
   std::vector<int> counts;
   for (const std::vector<int>& of_rank : rows) counts.push_back(per_row * static_cast<int>(of_rank.size()));
@@ -96,6 +87,31 @@ long exchange_read(const Communicator& ranks, const std::vector<std::vector<int>
   return received / 3;
 }
 
+// Sends each rank r the items of send[r] (by rank) with their 3 values value(i, c), and adds
+// each item received to add(i, c, v) in rank order: the same sum whatever order the messages
+// came in. Returns the items received. Collective.
+template <class Value, class Add>
+long send_and_add(const Communicator& ranks, const std::vector<std::vector<int>>& send, Value&& value, Add&& add) {
+  const std::vector<int> send_counts = values_per_rank(send, 1);
+  const std::vector<int> recv_counts = ranks.exchange_counts(send_counts);
+  std::vector<int> send_index;
+  for (const std::vector<int>& of_rank : send) send_index.insert(send_index.end(), of_rank.begin(), of_rank.end());
+  long received = 0;
+  for (int n : recv_counts) received += n;
+  std::vector<int> recv_index(static_cast<std::size_t>(received));
+  ranks.exchange(send_index, send_counts, recv_index, recv_counts);
+  std::vector<double> out;
+  for (int i : send_index)
+    for (int c = 0; c < 3; ++c) out.push_back(value(i, c));
+  std::vector<int> recv_values(recv_counts);
+  for (int& n : recv_values) n *= 3;
+  std::vector<double> in(3 * static_cast<std::size_t>(received));
+  ranks.exchange(out, values_per_rank(send, 3), in, recv_values);
+  for (std::size_t k = 0; k < recv_index.size(); ++k)
+    for (int c = 0; c < 3; ++c) add(recv_index[k], c, in[3 * k + static_cast<std::size_t>(c)]);
+  return received;
+}
+
 }  // namespace
 
 Eigen::MatrixXd OwnedRows::sum_mine(const Eigen::MatrixXd& part) const {
@@ -103,30 +119,15 @@ Eigen::MatrixXd OwnedRows::sum_mine(const Eigen::MatrixXd& part) const {
   Eigen::MatrixXd sum = part.middleRows(mine_.begin, mine_.size());
   const int p = ranks_.size();
   if (p == 1) return sum;
-  // Each other rank's rows of this part that are not zero, with their indices.
+  // Each other rank's rows of this part that are not zero (a zero row adds nothing: exact).
   std::vector<std::vector<int>> rows(static_cast<std::size_t>(p));
   for (int r = 0; r < p; ++r) {
     if (r == ranks_.rank()) continue;
     for (int i = blocks_[r].begin; i < blocks_[r].end; ++i)
       if (!part.row(i).isZero(0.0)) rows[r].push_back(i);
   }
-  const std::vector<int> send_counts = values_per_rank(rows, 1);
-  const std::vector<int> recv_counts = ranks_.exchange_counts(send_counts);
-  std::vector<int> send_index;
-  for (const std::vector<int>& of_rank : rows) send_index.insert(send_index.end(), of_rank.begin(), of_rank.end());
-  long received = 0;
-  for (int n : recv_counts) received += n;
-  std::vector<int> recv_index(static_cast<std::size_t>(received));
-  ranks_.exchange(send_index, send_counts, recv_index, recv_counts);
-  const std::vector<double> out = packed(part, rows);
-  std::vector<int> recv_values(recv_counts);
-  for (int& n : recv_values) n *= 3;
-  std::vector<double> in(3 * static_cast<std::size_t>(received));
-  ranks_.exchange(out, values_per_rank(rows, 3), in, recv_values);
-  // Added in rank order: the same sum whatever order the messages came in.
-  for (std::size_t k = 0; k < recv_index.size(); ++k)
-    for (int c = 0; c < 3; ++c) sum(recv_index[k] - mine_.begin, c) += in[3 * k + static_cast<std::size_t>(c)];
-  rows_received_ += received;
+  rows_received_ += send_and_add(ranks_, rows, [&](int i, int c) { return part(i, c); },
+                                 [&](int i, int c, double v) { sum(i - mine_.begin, c) += v; });
   return sum;
 }
 
@@ -223,10 +224,19 @@ Eigen::VectorXd OwnedSegments::mine(const Eigen::VectorXd& all) const {
 
 Eigen::VectorXd OwnedSegments::sum_mine(const Eigen::VectorXd& part) const {
   if (part.size() != 3 * static_cast<Eigen::Index>(total_)) throw std::invalid_argument("OwnedSegments::sum_mine: not a vector of every node");
-  const Eigen::VectorXd pieces = ordered(part);
-  Eigen::VectorXd sum(3 * size());
-  ranks_.sum_pieces({pieces.data(), static_cast<std::size_t>(pieces.size())}, {sum.data(), static_cast<std::size_t>(sum.size())},
-                    counts_);
+  Eigen::VectorXd sum = mine(part);
+  const int p = ranks_.size();
+  if (p == 1) return sum;
+  // Each other rank's nodes of this part that are not zero (a zero node adds nothing: exact).
+  std::vector<std::vector<int>> nodes(static_cast<std::size_t>(p));
+  int k = 0;
+  for (int r = 0; r < p; ++r)
+    for (const int end = k + counts_[r] / 3; k < end; ++k) {
+      const int i = order_.empty() ? k : order_[k];
+      if (r != ranks_.rank() && !part.segment<3>(3 * static_cast<Eigen::Index>(i)).isZero(0.0)) nodes[r].push_back(i);
+    }
+  nodes_received_ += send_and_add(ranks_, nodes, [&](int i, int c) { return part[3 * static_cast<Eigen::Index>(i) + c]; },
+                                  [&](int i, int c, double v) { sum[3 * static_cast<Eigen::Index>(position(i)) + c] += v; });
   return sum;
 }
 

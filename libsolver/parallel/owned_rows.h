@@ -5,7 +5,8 @@
 // or any blocks of the cells in order): rank r holds the rows of the cells it owns. The GMRES of (10) keeps its
 // vectors this way (stepper/cell_velocity.h): each rank only its cells' rows, so the Krylov
 // basis is split over the ranks, and a product's sum over the ranks reaches each rank only as
-// its rows (Communicator::sum_pieces) instead of whole on every rank.
+// its rows (only the rows of the other ranks' parts that are not zero travel) instead of whole
+// on every rank.
 #include <Eigen/Core>
 #include <cmath>
 #include <vector>
@@ -74,6 +75,8 @@ class OwnedSegments {
   // This rank's segment of `all` (3 values a node, every node).
   Eigen::VectorXd mine(const Eigen::VectorXd& all) const;
   // The sum over the ranks of their `part`s (every node each), this rank's segment of it.
+  // Only the nodes of a part that are not zero travel to their owner (a rank's part of a wall
+  // product is zero away from its rows and its slab of the grid).
   Eigen::VectorXd sum_mine(const Eigen::VectorXd& part) const;
   // Every rank's segment (`mine` on each) in place, on every rank.
   Eigen::VectorXd gather(const Eigen::VectorXd& mine) const;
@@ -84,7 +87,7 @@ class OwnedSegments {
   // A vector of every node with this rank's segment and the nodes of read_only's (all of them
   // before read_only), zero elsewhere. Collective.
   Eigen::VectorXd gather_read(const Eigen::VectorXd& mine) const;
-  // Nodes this rank has received from the others in gather_read so far.
+  // Nodes this rank has received from the others in gather_read and sum_mine so far.
   long nodes_received() const { return nodes_received_; }
 
  private:

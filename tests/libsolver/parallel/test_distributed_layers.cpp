@@ -288,8 +288,9 @@ TEST(OwnedSegments, OrderedSegmentsSumAndGather) {
 
 // Ordered segments reading only some nodes: the nodes read arrive exactly, each in its place,
 // with the rank's own segment; every other node is zero; only the other ranks' nodes count as
-// received.
-TEST(OwnedSegments, ReadOnlyTheNodesRead) {
+// received. A sum brings each owner only the nodes of the other ranks' parts that are not zero.
+// Small integers: exact.
+TEST(OwnedSegments, ReadOnlyTheNodesReadAndSumOnlyTheNodesThatAreNotZero) {
   const Communicator world = Communicator::world();
   const int p = world.size(), me = world.rank(), n = 11;
   std::vector<int> order(n);
@@ -313,6 +314,20 @@ TEST(OwnedSegments, ReadOnlyTheNodesRead) {
   long others = 0;
   for (int i : {0, 9}) others += segments.position(i) >= 0 ? 0 : 1;
   EXPECT_EQ(segments.nodes_received(), others);
+  // Each rank's part: its rank + 1 at node 5 and at its own segment's first node, zero elsewhere.
+  Eigen::VectorXd part = Eigen::VectorXd::Zero(3 * n);
+  part.segment<3>(15).setConstant(me + 1);
+  if (segments.size() > 0) part.segment<3>(3 * segments.node(0)).array() += me + 1;
+  Eigen::VectorXd sum_expected = Eigen::VectorXd::Zero(3 * n);
+  for (int r = 0; r < p; ++r) {
+    sum_expected.segment<3>(15).array() += r + 1;
+    if (first[r] < first[r + 1]) sum_expected.segment<3>(3 * order[first[r]]).array() += r + 1;
+  }
+  const long before = segments.nodes_received();
+  EXPECT_EQ(segments.sum_mine(part), segments.mine(sum_expected));
+  // Node 5 comes from every other rank to its owner; the ranks' own first nodes stay home.
+  EXPECT_EQ(segments.nodes_received() - before, segments.position(5) >= 0 ? p - 1 : 0);
+  EXPECT_THROW(segments.sum_mine(Eigen::VectorXd::Zero(3 * n - 3)), std::invalid_argument);
   EXPECT_THROW(segments.read_only({9, 0}), std::invalid_argument);
   EXPECT_THROW(segments.read_only({0, n}), std::invalid_argument);
 }
