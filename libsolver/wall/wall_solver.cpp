@@ -43,6 +43,7 @@ WallSolution WallSolver::solve(const PointField& velocity, double mu, const Wall
   const OwnedSegments& nodes = op_.segments();
   if (velocity_part && (velocity_part->rows() != velocity.rows() || velocity_part->cols() != velocity.cols()))
     throw std::invalid_argument("WallSolver::solve: the velocity's part is not one row a node");
+  const long received = nodes_received();
   const double scale = 8.0 * std::numbers::pi * mu;
   Eigen::VectorXd b;
   if (!velocity_part) {
@@ -60,14 +61,13 @@ WallSolution WallSolver::solve(const PointField& velocity, double mu, const Wall
                                  : preconditioner_.solve_mine(nodes.gather(r), nodes);
   };
   WallSolution s;
-  const long received = density_reads_.nodes_received();
   s.gmres = preconditioned_gmres(A, M_inv, b, x, options.tolerance, options.max_iterations, options.restart, &recycled_,
                                  nullptr, SplitInnerProducts{op_.ranks()});
   if (!s.gmres.converged)
     throw std::runtime_error("wall solve did not converge: relative residual " +
                              std::to_string(s.gmres.relative_residual) + " after " +
                              std::to_string(s.gmres.iterations) + " GMRES iterations");
-  s.nodes_received = density_reads_.nodes_received() - received;
+  s.nodes_received = nodes_received() - received;
   x = nodes.gather(x);
   s.force = to_field(x);
   return s;

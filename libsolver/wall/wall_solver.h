@@ -37,7 +37,9 @@ struct WallSolveOptions {
 struct WallSolution {
   PointField force;  // f at the nodes: the force density the fluid exerts on the wall
   GmresReport gmres;
-  long nodes_received = 0;  // nodes whose densities this rank's products brought from the others
+  // Nodes this rank received from the others: the densities its products read, and the nodes of
+  // the others' parts of its rows of the products' and the right-hand side's sums.
+  long nodes_received = 0;
 };
 
 class WallSolver {
@@ -65,8 +67,8 @@ class WallSolver {
   // Whether the operator's segments are the preconditioner's blocks' (wall_node_segments), so
   // that applying it moves nothing between the ranks.
   bool local_preconditioner() const { return local_preconditioner_; }
-  // Nodes this rank has received from the others for its products so far.
-  long nodes_received() const { return density_reads_.nodes_received(); }
+  // Nodes this rank has received from the others for its solves so far (as WallSolution's).
+  long nodes_received() const { return density_reads_.nodes_received() + op_.segments().nodes_received(); }
   // "wall operator: ...", "wall preconditioner (LU)" (this rank's blocks), "wall recycled
   // space" (memory_report.h).
   void report_memory(MemoryReport& report) const;
