@@ -21,7 +21,8 @@ namespace rbcflow {
 namespace {
 
 // Every cell's membrane state on every rank, from those of the ranks' own cells (the others
-// empty here): packed, summed over the ranks (a value plus zeros: the same bits), unpacked.
+// sized here): packed, each rank's block (owned_block, in rank order) gathered on every rank,
+// unpacked.
 void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<SHCoeffs>& shapes,
                      int np, const Communicator& ranks) {
   if (ranks.size() == 1) return;
@@ -52,8 +53,15 @@ void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& ow
       at += v.size();
     }
   };
-  for (int c = 0; c < nc; ++c) each_array(c, [](auto&& to, auto&& from) { to = from; });
-  ranks.sum(packed);
+  for (int c = owned.begin; c < owned.end; ++c) each_array(c, [](auto&& to, auto&& from) { to = from; });
+  std::vector<int> counts;
+  for (int r = 0; r < ranks.size(); ++r) {
+    const OwnedRange b = owned_block(nc, r, ranks.size());
+    counts.push_back(static_cast<int>(offset[b.end] - offset[b.begin]));
+  }
+  const Eigen::VectorXd mine = packed.segment(offset[owned.begin], offset[owned.end] - offset[owned.begin]);
+  ranks.gather_pieces({mine.data(), static_cast<std::size_t>(mine.size())},
+                      {packed.data(), static_cast<std::size_t>(packed.size())}, counts);
   for (int c = 0; c < nc; ++c) each_array(c, [](auto&& from, auto&& to) { to = from; });
 }
 
