@@ -201,13 +201,6 @@ bool OwnedSegments::operator==(const OwnedSegments& o) const {
   return total_ == o.total_ && begin_ == o.begin_ && end_ == o.end_ && counts_ == o.counts_ && order_ == o.order_;
 }
 
-Eigen::VectorXd OwnedSegments::ordered(const Eigen::VectorXd& all) const {
-  if (order_.empty()) return all;
-  Eigen::VectorXd out(all.size());
-  for (int k = 0; k < total_; ++k) out.segment<3>(3 * k) = all.segment<3>(3 * order_[k]);
-  return out;
-}
-
 Eigen::VectorXd OwnedSegments::unordered(const Eigen::VectorXd& in_order) const {
   if (order_.empty()) return in_order;
   Eigen::VectorXd out(in_order.size());

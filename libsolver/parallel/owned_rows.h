@@ -91,8 +91,7 @@ class OwnedSegments {
   long nodes_received() const { return nodes_received_; }
 
  private:
-  // `all` (every node, node order) in the segments' order, and back.
-  Eigen::VectorXd ordered(const Eigen::VectorXd& all) const;
+  // A vector in the segments' order (every node) back in the nodes' own order.
   Eigen::VectorXd unordered(const Eigen::VectorXd& in_order) const;
 
   Communicator ranks_;
