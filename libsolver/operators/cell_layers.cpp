@@ -10,6 +10,7 @@
 
 #include "libsolver/spme/double_layer_linear.h"
 #include "libsolver/spme/real_space_sum.h"
+#include "cell_halo.h"
 #include "near_targets.h"
 #include "libsolver/common/scoped_timer.h"
 
@@ -117,6 +118,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       node_shares[1] = {pair_share_radius(box, double_grid->parameters().cutoff), double_grid->parameters().cutoff};
     }
   }
+  halo_ = find_halo(single_grid.get(), double_grid.get());
   geometry_timer.stop();
   // The single layer of a given density is applied once, as its corrections are built: they
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
@@ -259,6 +261,25 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen
   const SourceNodes sources{owned_rows(nodes_.x), owned_rows(nodes_.weight), owned_rows(nodes_.normal)};
   return regular_layer_sum(sources, owned_rows(u), LayerKernel{Layer::double_, 0.0}, nodes_.x,
                            coincident_sources(nodes_.size(), first, n));
+}
+
+std::vector<int> CellLayers::find_halo(const SpmeGrid* single_grid, const SpmeGrid* double_grid) const {
+  if (owns_all()) return {};
+  const int np = nodes_per_cell();
+  std::vector<CellSphere> spheres;
+  for (int c = 0; c < num_cells_; ++c) spheres.push_back(bounding_sphere(nodes_.x.middleRows(c * np, np)));
+  double reach = 0.0;
+  for (int c = owned_.begin; c < owned_.end; ++c) reach = std::max(reach, cells_[c]->near_distance());
+  std::vector<SlabPlanes> slabs;
+  for (const SpmeGrid* grid : {single_grid, double_grid}) {
+    if (!grid) continue;
+    reach = std::max(reach, grid->parameters().cutoff);
+    if (grid->distributed())
+      slabs.push_back({grid->axis(0), grid->size(0), grid->first_plane(), grid->planes(), grid->order()});
+  }
+  // A grid every rank holds whole: this rank's smooth part reaches every node.
+  if (single_grid && slabs.size() != (double_grid ? 2u : 1u)) slabs.clear();
+  return cell_halo(spheres, owned_, domain_.box, reach, slabs);
 }
 
 PairShares CellLayers::take_folded_shares(Layer layer) const {

@@ -117,6 +117,11 @@ class CellLayers {
   // The rows of u that double_layer_part reads, ascending: its cells' and, on a grid split over
   // the ranks, the nodes whose B-spline stencils reach its slab (all rows on one rank).
   std::vector<int> density_rows() const;
+  // The cells this rank does not own at whose rows its parts of products can be nonzero and
+  // whose rows it reads (cell_halo.h), ascending: on a grid split over the ranks, the cells
+  // within the real-space cutoff and the near distance of its cells and those reaching its slab
+  // of a grid; elsewhere every cell it does not own (none on one rank).
+  const std::vector<int>& halo() const { return halo_; }
 
  private:
   struct NearCorrection {
@@ -128,6 +133,8 @@ class CellLayers {
   // as sources, at every node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
+  // The halo of the owned cells (cell_halo.h) in the products of these grids (null: none).
+  std::vector<int> find_halo(const SpmeGrid* single_grid, const SpmeGrid* double_grid) const;
   // The owned cells' rows of stacked node data.
   template <class Matrix>
   auto owned_rows(const Matrix& stacked) const {
@@ -143,6 +150,7 @@ class CellLayers {
   LayerDomain domain_;
   SpmeGridCache* grid_cache_;
   OwnedRange owned_;
+  std::vector<int> halo_;
   int num_cells_ = 0;
   std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;  // null where not owned
   SourceNodes nodes_;

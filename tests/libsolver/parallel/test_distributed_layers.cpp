@@ -628,6 +628,61 @@ TEST(DistributedLayers, CellsOwnedAlongTheSlabsSolveAsOneRank) {
   }
 }
 
+// A column of 24 cells, 3 apart (0.23 between rims) along a box of 72 (the slab axis): on several ranks each
+// rank's parts of the products are zero at every row outside its cells and their halo
+// (cell_halo.h), and it reads no density outside them; the halo is not every cell (the far end
+// of the column is beyond the cutoff, the near distance and the stencils of the rank's slab).
+TEST(DistributedLayers, PartsStayWithinTheHalo) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 24;
+  const auto grids = CellGrids::make(N, 2 * N);
+  std::vector<SHCoeffs> cells;
+  for (int c = 0; c < nc; ++c) {
+    SHSurface s = make_biconcave(N);  // edge on to the column: its bounding sphere as long as it is
+    Eigen::Matrix3d quarter_turn_about_y;
+    quarter_turn_about_y << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+    s.rotate(quarter_turn_about_y);
+    s.translate(Eigen::Vector3d(2.25 + 0.1 * (c % 3), 2.25, 1.5 + 3.0 * c));
+    cells.push_back(s.coeffs());
+  }
+  LayerDomain shared{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 72.0)), 1e-6};
+  shared.ranks = world;
+  SpmeGridCache cache;
+  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  ASSERT_TRUE(owners.in_cell_order());  // listed up the column
+  shared.owned_first = owners.first;
+  CellLayers layers(cells, grids, shared, {}, true, &cache);
+  const int np = layers.nodes_per_cell();
+  std::vector<bool> reached(static_cast<std::size_t>(nc) * np, false);
+  auto mark = [&](int c) { std::fill_n(reached.begin() + static_cast<long>(c) * np, np, true); };
+  for (int c = layers.owned().begin; c < layers.owned().end; ++c) mark(c);
+  for (const int c : layers.halo()) mark(c);
+  const Eigen::MatrixXd f = smooth_density(layers.nodes().x);
+  Eigen::RowVector3d uniform;
+  const Eigen::MatrixXd single = layers.single_layer_part(f), double_ = layers.double_layer_part(f, &uniform);
+  int outside = 0, nonzero_outside = 0;
+  for (int i = 0; i < nc * np; ++i) {
+    if (reached[static_cast<std::size_t>(i)]) continue;
+    ++outside;
+    if (!single.row(i).isZero(0.0) || !double_.row(i).isZero(0.0)) ++nonzero_outside;
+  }
+  int read_outside = 0;
+  for (const int i : layers.density_rows()) read_outside += reached[static_cast<std::size_t>(i)] ? 0 : 1;
+  std::printf("  rank %d: cells %d..%d, halo of %zu cells, %d rows outside (%d nonzero, %d read)\n", world.rank(),
+              layers.owned().begin, layers.owned().end - 1, layers.halo().size(), outside, nonzero_outside, read_outside);
+  EXPECT_EQ(nonzero_outside, 0);
+  EXPECT_EQ(read_outside, 0);
+  const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(shared, static_cast<long>(nc) * np, true, &cache);
+  if (world.size() == 1) {
+    EXPECT_TRUE(layers.halo().empty());
+  } else if (grid->distributed()) {
+    EXPECT_GT(outside, 0);
+    EXPECT_LT(static_cast<int>(layers.halo().size()), nc - layers.owned().size());
+  } else {
+    EXPECT_EQ(static_cast<int>(layers.halo().size()), nc - layers.owned().size());
+  }
+}
+
 // More ranks than cells: a rank that owns none takes part in every product with nothing.
 TEST(DistributedLayers, ARankWithoutCells) {
   const Communicator world = Communicator::world();

@@ -1,0 +1,51 @@
+#pragma once
+// The halo of a rank's cells in a step's layer products (cell_layers.h): the cells it does not
+// own at whose nodes its part of a product can be nonzero, or whose densities it reads. On a
+// grid split into slabs over the ranks (spme/spme_grid.h) a rank's part is its owned cells'
+// nodes as sources:
+//   - their real-space Ewald sums reach the nodes within the cutoff r_c of an owned node
+//     (nearest periodic image, section 5.3);
+//   - their nearly-singular corrections reach the nodes within an owned cell's near distance
+//     of its surface (section 5.4);
+//   - the smooth part, spread by every node whose B-spline stencil reaches the rank's planes
+//     and interpolated at those nodes, reads and reaches only them (section 5.2).
+// The halo is taken from bounding spheres (every node of a cell within `radius` of `center`),
+// so it may hold a cell that no node of which is reached, never miss one that is. Everywhere
+// else (free space, a grid every rank holds whole) a rank's part reaches every node: the halo
+// is every cell it does not own.
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "libsolver/common/periodic_box.h"
+#include "libsolver/parallel/ownership.h"
+
+namespace rbcflow {
+
+struct CellSphere {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+// The sphere about the mean of the nodes (rows x 3) through the farthest node.
+CellSphere bounding_sphere(const Eigen::MatrixXd& nodes);
+
+// One rank's planes of a grid split into slabs: planes [first_plane, first_plane + planes) of
+// the grid's `size` planes along box axis `axis`, B-splines of order `order`.
+struct SlabPlanes {
+  int axis = 0, size = 0, first_plane = 0, planes = 0, order = 0;
+};
+
+// Whether a B-spline stencil of a node within the sphere can reach the slab's planes: a node at
+// grid coordinate u = x K / L spreads to planes floor(u) - p + 1 .. floor(u) (modulo K).
+bool reaches_slab(const CellSphere& sphere, const SlabPlanes& slab, const PeriodicBox& box);
+
+// The halo of the cells `owned` (of spheres.size() cells, stacked in owner order): the other
+// cells whose spheres come within `reach` (the largest of the real-space cutoffs and the near
+// distances) of an owned cell's in the box, or that reach one of `slabs` (the rank's planes
+// of each grid its products use); ascending. Free space (no box) or no slabs: every cell not
+// owned.
+std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange owned, const std::optional<PeriodicBox>& box,
+                           double reach, const std::vector<SlabPlanes>& slabs);
+
+}  // namespace rbcflow
