@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
     KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
     long last_rows_received = 0, last_nodes = 0, last_wall_received = 0;
-    int last_iterations = 0, last_wall_iterations = 0;
+    int last_iterations = 0, last_wall_iterations = 0, last_owned = 0, last_halo = 0;
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
     for (int k = 1; k <= steps; ++k) {
@@ -139,6 +139,8 @@ int main(int argc, char** argv) {
       last_wall_iterations = s.gmres_wall;
       last_iterations = s.gmres_cells;
       last_nodes = s.velocity.rows();
+      last_owned = s.owned_cells;
+      last_halo = s.halo_cells;
       std::fflush(stdout);
       if (k == 1 && steps > 1) continue;
       best_step = std::min(best_step, step);
@@ -159,6 +161,8 @@ int main(int argc, char** argv) {
     if (ranks.size() > 1) {
       std::fprintf(stderr, "rank %d: %ld node rows received in the last step's products of (10), %d GMRES iterations, %ld cell nodes\n",
                    ranks.rank(), last_rows_received, last_iterations, last_nodes);
+      std::fprintf(stderr, "rank %d: %d cells owned in the last step's products, a halo of %d of the other %d\n", ranks.rank(),
+                   last_owned, last_halo, static_cast<int>(stepper->cells().size()) - last_owned);
       if (stepper->wall())
         std::fprintf(stderr, "rank %d: %ld wall nodes received in the last step's wall solves, %d GMRES iterations, %d wall nodes\n",
                      ranks.rank(), last_wall_received, last_wall_iterations, stepper->wall()->elements().num_nodes());

@@ -209,6 +209,8 @@ FlowSolution CellStepper::solve() const {
     // the operator is built, and the single-layer tables freed (cell_layers.h).
     layers = std::make_unique<CellLayers>(shapes, grids_, domain, options_.quadrature, lambda != 1.0,
                                           grid_cache_.get(), traction);
+    s.owned_cells = layers->owned().size();
+    s.halo_cells = static_cast<int>(layers->halo().size());
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
     timing.near_corrections = layers->build_timings().near;
