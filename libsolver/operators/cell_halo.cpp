@@ -13,6 +13,11 @@ CellSphere bounding_sphere(const Eigen::MatrixXd& nodes) {
   return s;
 }
 
+std::optional<SlabPlanes> rank_slab(const SpmeGrid& grid) {
+  if (!grid.distributed()) return std::nullopt;
+  return SlabPlanes{grid.axis(0), grid.size(0), grid.first_plane(), grid.planes(), grid.order()};
+}
+
 bool reaches_slab(const CellSphere& sphere, const SlabPlanes& slab, const PeriodicBox& box) {
   const int K = slab.size;
   const double scale = K / box.length(slab.axis);

@@ -19,6 +19,7 @@
 
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/parallel/ownership.h"
+#include "libsolver/spme/spme_grid.h"
 
 namespace rbcflow {
 
@@ -35,6 +36,9 @@ CellSphere bounding_sphere(const Eigen::MatrixXd& nodes);
 struct SlabPlanes {
   int axis = 0, size = 0, first_plane = 0, planes = 0, order = 0;
 };
+
+// This rank's planes of `grid`, or none where every rank holds it whole.
+std::optional<SlabPlanes> rank_slab(const SpmeGrid& grid);
 
 // Whether a B-spline stencil of a node within the sphere can reach the slab's planes: a node at
 // grid coordinate u = x K / L spreads to planes floor(u) - p + 1 .. floor(u) (modulo K).

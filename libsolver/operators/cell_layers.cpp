@@ -10,7 +10,6 @@
 
 #include "libsolver/spme/double_layer_linear.h"
 #include "libsolver/spme/real_space_sum.h"
-#include "cell_halo.h"
 #include "near_targets.h"
 #include "libsolver/common/scoped_timer.h"
 
@@ -118,7 +117,8 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       node_shares[1] = {pair_share_radius(box, double_grid->parameters().cutoff), double_grid->parameters().cutoff};
     }
   }
-  halo_ = find_halo(single_grid.get(), double_grid.get());
+  find_halo_extent(single_grid.get(), double_grid.get());
+  halo_ = halo_with({});
   geometry_timer.stop();
   // The single layer of a given density is applied once, as its corrections are built: they
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
@@ -263,23 +263,31 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen
                            coincident_sources(nodes_.size(), first, n));
 }
 
-std::vector<int> CellLayers::find_halo(const SpmeGrid* single_grid, const SpmeGrid* double_grid) const {
+void CellLayers::find_halo_extent(const SpmeGrid* single_grid, const SpmeGrid* double_grid) {
+  for (int c = owned_.begin; c < owned_.end; ++c) halo_reach_ = std::max(halo_reach_, cells_[c]->near_distance());
+  for (const SpmeGrid* grid : {single_grid, double_grid}) {
+    if (!grid) continue;
+    halo_reach_ = std::max(halo_reach_, grid->parameters().cutoff);
+    if (const std::optional<SlabPlanes> slab = rank_slab(*grid)) {
+      halo_slabs_.push_back(*slab);
+    } else {
+      halo_every_cell_ = true;  // a grid every rank holds whole: this rank's smooth part reaches every node
+    }
+  }
+  if (!single_grid) halo_every_cell_ = true;  // free space: direct sums at every node
+}
+
+std::vector<int> CellLayers::halo_with(const std::vector<SlabPlanes>& other_slabs) const {
   if (owns_all()) return {};
+  std::vector<SlabPlanes> slabs;
+  if (!halo_every_cell_) {
+    slabs = halo_slabs_;
+    slabs.insert(slabs.end(), other_slabs.begin(), other_slabs.end());
+  }
   const int np = nodes_per_cell();
   std::vector<CellSphere> spheres;
   for (int c = 0; c < num_cells_; ++c) spheres.push_back(bounding_sphere(nodes_.x.middleRows(c * np, np)));
-  double reach = 0.0;
-  for (int c = owned_.begin; c < owned_.end; ++c) reach = std::max(reach, cells_[c]->near_distance());
-  std::vector<SlabPlanes> slabs;
-  for (const SpmeGrid* grid : {single_grid, double_grid}) {
-    if (!grid) continue;
-    reach = std::max(reach, grid->parameters().cutoff);
-    if (grid->distributed())
-      slabs.push_back({grid->axis(0), grid->size(0), grid->first_plane(), grid->planes(), grid->order()});
-  }
-  // A grid every rank holds whole: this rank's smooth part reaches every node.
-  if (single_grid && slabs.size() != (double_grid ? 2u : 1u)) slabs.clear();
-  return cell_halo(spheres, owned_, domain_.box, reach, slabs);
+  return cell_halo(spheres, owned_, domain_.box, halo_reach_, slabs);
 }
 
 PairShares CellLayers::take_folded_shares(Layer layer) const {

@@ -21,6 +21,7 @@
 #include <optional>
 #include <vector>
 
+#include "cell_halo.h"
 #include "geometry/surface/cell_grids.h"
 #include "libsolver/common/memory_report.h"
 #include "libsolver/parallel/ownership.h"
@@ -122,6 +123,10 @@ class CellLayers {
   // within the real-space cutoff and the near distance of its cells and those reaching its slab
   // of a grid; elsewhere every cell it does not own (none on one rank).
   const std::vector<int>& halo() const { return halo_; }
+  // The halo of a step that also uses other operators with the cells (the cells' layers at the
+  // wall, the wall's velocity at the cells): halo() and the cells whose B-spline stencils can
+  // reach `other_slabs`, this rank's planes of those operators' grids split over the ranks.
+  std::vector<int> halo_with(const std::vector<SlabPlanes>& other_slabs) const;
 
  private:
   struct NearCorrection {
@@ -133,8 +138,9 @@ class CellLayers {
   // as sources, at every node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
-  // The halo of the owned cells (cell_halo.h) in the products of these grids (null: none).
-  std::vector<int> find_halo(const SpmeGrid* single_grid, const SpmeGrid* double_grid) const;
+  // The reach and slabs of the halo of the owned cells (cell_halo.h) in the products of these
+  // grids (null: none).
+  void find_halo_extent(const SpmeGrid* single_grid, const SpmeGrid* double_grid);
   // The owned cells' rows of stacked node data.
   template <class Matrix>
   auto owned_rows(const Matrix& stacked) const {
@@ -151,6 +157,11 @@ class CellLayers {
   SpmeGridCache* grid_cache_;
   OwnedRange owned_;
   std::vector<int> halo_;
+  // What the halo is taken from: the reach about the owned cells, this rank's slabs of the
+  // grids, and whether a part reaches every node (halo_with).
+  double halo_reach_ = 0.0;
+  std::vector<SlabPlanes> halo_slabs_;
+  bool halo_every_cell_ = false;
   int num_cells_ = 0;
   std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;  // null where not owned
   SourceNodes nodes_;

@@ -39,6 +39,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
       xi = grid->parameters().xi;
       shares.reach = grid->parameters().cutoff;
       if (owned.empty() && !grid->distributed()) return nullptr;
+      if (const std::optional<SlabPlanes> slab = rank_slab(*grid)) slabs_.push_back(*slab);
       // No kept pair coefficients: a step applies each layer here once (the single layer in
       // the build, the double layer in (12)), but for the first step's start sweeps; kept, they
       // would be filled once and held at the step's peak for nothing.
@@ -92,6 +93,7 @@ SourceNodes CellLayersAtPoints::owned_sources() const {
 }
 
 CellLayersAtPoints::~CellLayersAtPoints() = default;
+
 
 int CellLayersAtPoints::near_points() const {
   long n = 0;

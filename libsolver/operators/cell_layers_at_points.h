@@ -36,6 +36,9 @@ class CellLayersAtPoints {
   // the sums of the ranks' parts, which a caller that needs only some rows sums itself.
   Eigen::MatrixXd single_layer_part(const Eigen::MatrixXd& f) const;
   Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u) const;
+  // This rank's planes of its plans' grids split over the ranks: a part reads the densities of
+  // the owned cells and of the nodes whose stencils reach these (CellLayers::halo_with).
+  const std::vector<SlabPlanes>& slabs() const { return slabs_; }
 
  private:
   struct Near {
@@ -56,6 +59,7 @@ class CellLayersAtPoints {
   std::vector<Near> near_;  // per cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
   std::optional<Eigen::MatrixXd> single_density_, single_part_;  // the part, of single_layer_density
+  std::vector<SlabPlanes> slabs_;
 };
 
 }  // namespace rbcflow

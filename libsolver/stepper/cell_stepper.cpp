@@ -210,7 +210,6 @@ FlowSolution CellStepper::solve() const {
     layers = std::make_unique<CellLayers>(shapes, grids_, domain, options_.quadrature, lambda != 1.0,
                                           grid_cache_.get(), traction);
     s.owned_cells = layers->owned().size();
-    s.halo_cells = static_cast<int>(layers->halo().size());
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
     timing.near_corrections = layers->build_timings().near;
@@ -357,6 +356,16 @@ FlowSolution CellStepper::solve() const {
     const std::string what = e.what();
     if (what.find(" at step ") != std::string::npos) throw;
     throw std::runtime_error(what + at_step(step));
+  }
+  if (layers) {
+    // The step's halo: the layers' and the cells whose stencils reach this rank's slabs of the
+    // grids of the layers at the wall (their densities read) and of the wall at the cells
+    // (their rows of its part).
+    std::vector<SlabPlanes> other_slabs;
+    if (at_wall) other_slabs = at_wall->slabs();
+    if (wall_at_cells)
+      if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
+    s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
   if (section_meter_) {
     std::vector<SHSurface> shapes;

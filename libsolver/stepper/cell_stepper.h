@@ -75,7 +75,7 @@ struct FlowSolution {
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
   long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
-  int owned_cells = 0, halo_cells = 0;  // this rank's cells in the step's products and their halo (CellLayers::halo)
+  int owned_cells = 0, halo_cells = 0;  // this rank's cells in the step's products and their halo in all of them (CellLayers::halo_with)
   long wall_nodes_received = 0;  // wall nodes (12)'s solves brought this rank from the others (WallSolution's)
   StepTimings timings;        // where solve() spent its time
   MemoryReport memory;        // what solve()'s operators held at its end (memory_report.h)

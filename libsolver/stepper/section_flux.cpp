@@ -47,9 +47,11 @@ bool inside_cell(const SHSurface& shape, const TriangleMesh& mesh, const SphGrid
 // 1 for the points inside a cell (only points within the cell's bounding sphere are tested, at
 // their image nearest the cell's centre).
 Eigen::VectorXi inside_cells(const PointField& points, const CellsAtStep& cells, const PeriodicBox& box) {
-  Eigen::VectorXi inside = Eigen::VectorXi::Zero(points.rows());
+  Eigen::VectorXd inside = Eigen::VectorXd::Zero(points.rows());
   const SphGrid& grid = cells.grid->grid();
-  for (const SHSurface& shape : *cells.shapes) {
+  const OwnedRange& owned = cells.layers->owned();
+  for (int c = owned.begin; c < owned.end; ++c) {
+    const SHSurface& shape = (*cells.shapes)[c];
     const TriangleMesh mesh = shape.triangulate(*cells.grid);
     const Eigen::Vector3d centre = mesh.points.colwise().mean().transpose();
     const double radius = (mesh.points.rowwise() - centre.transpose()).rowwise().norm().maxCoeff();
@@ -59,7 +61,8 @@ Eigen::VectorXi inside_cells(const PointField& points, const CellsAtStep& cells,
       if (d.norm() <= radius && inside_cell(shape, mesh, grid, spacing, centre + d)) inside[i] = 1;
     }
   }
-  return inside;
+  cells.layers->domain().ranks.sum(inside);  // each rank tests its own cells
+  return (inside.array() > 0).cast<int>();
 }
 
 }  // namespace
@@ -78,9 +81,12 @@ SectionFluxMeter::SectionFluxMeter(const WallCoupling& wall, std::vector<std::ve
   }
 }
 
-int SectionFluxMeter::clearest(int b, const Eigen::Matrix<double, Eigen::Dynamic, 3>* nodes) const {
+int SectionFluxMeter::clearest(int b, const CellLayers* layers) const {
   const std::vector<Candidate>& candidates = branches_[b];
-  if (!nodes || candidates.size() == 1) return 0;
+  if (!layers || candidates.size() == 1) return 0;
+  // Each rank measures the clearance of its own cells' nodes; the least over the ranks.
+  const int np = layers->nodes_per_cell();
+  const auto nodes = layers->nodes().x.middleRows(layers->owned().begin * np, layers->owned().size() * np);
   int best = 0;
   double best_clearance = -1;
   for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
@@ -88,11 +94,12 @@ int SectionFluxMeter::clearest(int b, const Eigen::Matrix<double, Eigen::Dynamic
     const Eigen::Vector3d centre = q.points.colwise().mean().transpose();  // the disk's centre
     const double radius = (q.points.rowwise() - centre.transpose()).rowwise().norm().maxCoeff();
     double clearance = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < nodes->rows(); ++i) {
-      const Eigen::Vector3d d = nearest_image(nodes->row(i).transpose() - centre, box_);
+    for (int i = 0; i < nodes.rows(); ++i) {
+      const Eigen::Vector3d d = nearest_image(nodes.row(i).transpose() - centre, box_);
       const double axial = d.dot(q.normal), radial = (d - axial * q.normal).norm();
       clearance = std::min(clearance, radial <= radius ? std::abs(axial) : std::hypot(axial, radial - radius));
     }
+    clearance = layers->domain().ranks.min(clearance);
     if (clearance > best_clearance) {
       best_clearance = clearance;
       best = k;
@@ -107,7 +114,7 @@ std::vector<double> SectionFluxMeter::fluxes(const Eigen::Vector3d& mean_velocit
   std::vector<Candidate*> chosen;
   int n = 0;
   for (int b = 0; b < num_branches(); ++b) {
-    chosen.push_back(&branches_[b][clearest(b, with_cells ? &cells->layers->nodes().x : nullptr)]);
+    chosen.push_back(&branches_[b][clearest(b, with_cells ? cells->layers : nullptr)]);
     n += static_cast<int>(chosen.back()->points.rows());
   }
   PointField points(n, 3), u(n, 3);

@@ -5,7 +5,9 @@
 // which is u(x) in the plasma and lambda u(x) inside a cell (Pozrikidis 1992, eq. 5.3.8), the
 // cells' layers with their nearly-singular corrections (cell_layers_at_points.h); a point is
 // inside a cell by the winding number of the cell's grid triangulation. The wall's operator at
-// the points is built once (the wall and the sections do not move).
+// the points is built once (the wall and the sections do not move). On several ranks each rank
+// measures the clearance of its own cells and tests the points against them; the least
+// clearance and the points inside are then the ranks' (exact: the same as on one rank).
 #include <Eigen/Core>
 #include <optional>
 #include <vector>
@@ -50,8 +52,8 @@ class SectionFluxMeter {
     PointField points;  // wrapped into the box
     WallOperator wall_at_points;
   };
-  // The candidate of branch b farthest from the cells' grid points `nodes`.
-  int clearest(int b, const Eigen::Matrix<double, Eigen::Dynamic, 3>* nodes) const;
+  // The candidate of branch b farthest from the nodes of the cells of `layers` (null: none).
+  int clearest(int b, const CellLayers* layers) const;
 
   PeriodicBox box_;
   std::vector<std::vector<Candidate>> branches_;

@@ -92,6 +92,11 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
   ewald_->keep_pairs_up_to(0);
 }
 
+const SpmeGrid& WallOperator::grid() const {
+  if (!ewald_) throw std::logic_error("WallOperator::grid: a free-space operator has no grid");
+  return ewald_->smooth().grid();
+}
+
 PointField WallOperator::apply(const PointField& f) {
   if (near_and_real_) return to_field(segments_.gather(apply_mine(f)));
   PointField u;

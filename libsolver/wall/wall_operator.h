@@ -84,6 +84,9 @@ class WallOperator {
   // and, on the rank that adds them, the coincident pairs' triangles'; else every node.
   std::vector<int> density_nodes() const;
   const Communicator& ranks() const { return ranks_; }
+  // The smooth part's grid (periodic box only): a rank's part at targets (TargetRows) is nonzero
+  // at its rows and at the targets whose stencils reach its slab of a grid split over the ranks.
+  const SpmeGrid& grid() const;
   // The targets split over the ranks: the assembled rows' segments, else blocks of the targets.
   const OwnedSegments& segments() const { return segments_; }
 

@@ -76,6 +76,21 @@ WallOperator tube_wall_operator(const std::shared_ptr<const WallElements>& e, co
                       WallOperator::RealSpace::assembled, 0, ranks, kAssembledRealSpace, std::move(rows));
 }
 
+// `nc` red cells in a column along z, 3 apart (0.23 between rims), about x = y = `middle`:
+// edge on to the column, so that a cell's bounding sphere is as long as it is.
+std::vector<SHCoeffs> edge_on_column(int N, int nc, double middle) {
+  std::vector<SHCoeffs> cells;
+  for (int c = 0; c < nc; ++c) {
+    SHSurface s = make_biconcave(N);
+    Eigen::Matrix3d quarter_turn_about_y;
+    quarter_turn_about_y << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+    s.rotate(quarter_turn_about_y);
+    s.translate(Eigen::Vector3d(middle + 0.1 * (c % 3), middle, 1.5 + 3.0 * c));
+    cells.push_back(s.coeffs());
+  }
+  return cells;
+}
+
 }  // namespace
 
 TEST(Ownership, BlocksCoverTheCellsInRankOrder) {
@@ -636,15 +651,7 @@ TEST(DistributedLayers, PartsStayWithinTheHalo) {
   const Communicator world = Communicator::world();
   const int N = 8, nc = 24;
   const auto grids = CellGrids::make(N, 2 * N);
-  std::vector<SHCoeffs> cells;
-  for (int c = 0; c < nc; ++c) {
-    SHSurface s = make_biconcave(N);  // edge on to the column: its bounding sphere as long as it is
-    Eigen::Matrix3d quarter_turn_about_y;
-    quarter_turn_about_y << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-    s.rotate(quarter_turn_about_y);
-    s.translate(Eigen::Vector3d(2.25 + 0.1 * (c % 3), 2.25, 1.5 + 3.0 * c));
-    cells.push_back(s.coeffs());
-  }
+  const std::vector<SHCoeffs> cells = edge_on_column(N, nc, 2.25);
   LayerDomain shared{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 72.0)), 1e-6};
   shared.ranks = world;
   SpmeGridCache cache;
@@ -680,6 +687,80 @@ TEST(DistributedLayers, PartsStayWithinTheHalo) {
     EXPECT_LT(static_cast<int>(layers.halo().size()), nc - layers.owned().size());
   } else {
     EXPECT_EQ(static_cast<int>(layers.halo().size()), nc - layers.owned().size());
+  }
+}
+
+// The step's other operators with the cells stay within the step's halo
+// (CellLayers::halo_with): the cells' layers at the wall nodes read no density outside the
+// owned and halo cells (those rows set to NaN leave the parts finite), and the wall's velocity
+// at the cells' nodes (each rank's near field and real space at its own cells, its slab of the
+// grid at every node) is zero outside them. Reading and writing beyond the owned cells shows the
+// halo is needed: NaN in the halo's rows reaches some rank's parts, and the wall's part is nonzero
+// there on some rank.
+// 16 cells in a tube of D = 4.2 in a box 5 x 5 x 48, tolerance 1e-6.
+TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 16;
+  const auto grids = CellGrids::make(N, 2 * N);
+  const std::vector<SHCoeffs> cells = edge_on_column(N, nc, 2.5);
+  const PeriodicBox box(Eigen::Vector3d(5.0, 5.0, 48.0));
+  TubeSpec spec;
+  spec.diameter = 4.2;
+  spec.box = box.lengths();
+  spec.element_size = 0.6;
+  const auto wall = std::make_shared<const WallElements>(tube(spec));
+  LayerDomain shared{box, 1e-6};
+  shared.ranks = world;
+  SpmeGridCache cache;
+  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  ASSERT_TRUE(owners.in_cell_order());
+  shared.owned_first = owners.first;
+  CellLayers layers(cells, grids, shared, {}, true, &cache);
+  const int np = layers.nodes_per_cell();
+  const OwnedRange owned = layers.owned();
+  CellLayersAtPoints at_wall(layers, wall->wall.surface.points);
+  WallOperator wall_at_cells(wall, layers.nodes().x, TargetRows{owned.begin * np, owned.end * np}, box, 1e-6, &cache,
+                             world);
+  std::vector<SlabPlanes> other_slabs = at_wall.slabs();
+  if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells.grid())) other_slabs.push_back(*slab);
+  const std::vector<int> halo = layers.halo_with(other_slabs);
+  // 0: outside, 1: owned, 2: halo, by node row.
+  std::vector<int> kind(static_cast<std::size_t>(nc) * np, 0);
+  for (int c = owned.begin; c < owned.end; ++c) std::fill_n(kind.begin() + static_cast<long>(c) * np, np, 1);
+  for (const int c : halo) std::fill_n(kind.begin() + static_cast<long>(c) * np, np, 2);
+  const Eigen::MatrixXd f = smooth_density(layers.nodes().x);
+  auto with_nan_in = [&](int k) {
+    Eigen::MatrixXd g = f;
+    for (int i = 0; i < nc * np; ++i)
+      if (kind[static_cast<std::size_t>(i)] == k) g.row(i).setConstant(std::nan(""));
+    return g;
+  };
+  const Eigen::MatrixXd nan_outside = with_nan_in(0), nan_in_halo = with_nan_in(2);
+  const bool outside_read = !at_wall.single_layer_part(nan_outside).allFinite() ||
+                            !at_wall.double_layer_part(nan_outside).allFinite();
+  const bool halo_read = !at_wall.single_layer_part(nan_in_halo).allFinite();
+  const PointField u = wall_at_cells.apply(smooth_density(wall->wall.surface.points));
+  int nonzero_outside = 0, nonzero_in_halo = 0;
+  for (int i = 0; i < nc * np; ++i) {
+    const bool nonzero = !u.row(i).isZero(0.0);
+    nonzero_outside += nonzero && kind[static_cast<std::size_t>(i)] == 0;
+    nonzero_in_halo += nonzero && kind[static_cast<std::size_t>(i)] == 2;
+  }
+  std::printf("  rank %d: cells %d..%d, halo %zu (the layers' alone %zu); at the wall %s outside, %s the halo; wall at "
+              "the cells nonzero at %d rows outside, %d in the halo\n",
+              world.rank(), owned.begin, owned.end - 1, halo.size(), layers.halo().size(),
+              outside_read ? "reads" : "reads nothing", halo_read ? "reads" : "does not read", nonzero_outside,
+              nonzero_in_halo);
+  EXPECT_FALSE(outside_read);
+  EXPECT_EQ(nonzero_outside, 0);
+  EXPECT_TRUE(std::includes(halo.begin(), halo.end(), layers.halo().begin(), layers.halo().end()));
+  // Whether a rank reads or writes its halo's rows depends on where its slab ends: on some rank.
+  const long ranks_reading_halo = world.sum(static_cast<long>(halo_read));
+  const long halo_rows_written = world.sum(static_cast<long>(nonzero_in_halo));
+  if (world.size() > 1 && rank_slab(wall_at_cells.grid())) {
+    EXPECT_LT(static_cast<int>(halo.size()), nc - owned.size());
+    EXPECT_GT(ranks_reading_halo, 0);
+    EXPECT_GT(halo_rows_written, 0);
   }
 }
 
