@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <set>
+#include <span>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include "libsolver/linear/anderson_mixing.h"
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/operators/cell_owners.h"
+#include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 
@@ -20,51 +22,45 @@ namespace rbcflow {
 
 namespace {
 
-// Every cell's membrane state on every rank, from those of the ranks' own cells (the others
-// sized here): packed, each rank's block (owned_block, in rank order) gathered on every rank,
-// unpacked.
+// The arrays of a membrane state, as spans (share_blocks).
+std::vector<std::span<double>> arrays(MembraneState& m) {
+  auto span = [](auto& a) { return std::span<double>(a.data(), static_cast<std::size_t>(a.size())); };
+  return {span(m.traction.values()), span(m.traction_grid), span(m.dilatation), span(m.principal_tension),
+          std::span<double>(&m.elastic_energy, 1)};
+}
+
+// Every cell's membrane state on every rank, from those of the ranks' own cells (owned_block;
+// the others sized here).
 void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<SHCoeffs>& shapes,
                      int np, const Communicator& ranks) {
   if (ranks.size() == 1) return;
-  const int nc = static_cast<int>(membranes.size());
-  std::vector<Eigen::Index> offset(nc + 1, 0);
-  for (int c = 0; c < nc; ++c) {
+  std::vector<std::vector<std::span<double>>> items;
+  for (std::size_t c = 0; c < membranes.size(); ++c) {
     MembraneState& m = membranes[c];
-    if (!owned.contains(c)) {
+    if (!owned.contains(static_cast<int>(c))) {
       m.traction = SHCoeffs(shapes[c].order(), 3);
       m.traction_grid = Eigen::MatrixXd::Zero(np, 3);
       m.dilatation = Eigen::VectorXd::Zero(np);
       m.principal_tension = Eigen::MatrixXd::Zero(np, 2);
       m.elastic_energy = 0.0;
     }
-    offset[c + 1] = offset[c] + m.traction.values().size() + m.traction_grid.size() + m.dilatation.size() +
-                    m.principal_tension.size() + 1;
+    items.push_back(arrays(m));
   }
-  Eigen::VectorXd packed(offset[nc]);
-  const auto each_array = [&](int c, auto&& f) {
-    MembraneState& m = membranes[c];
-    Eigen::Index at = offset[c];
-    for (Eigen::Map<Eigen::VectorXd> v : {Eigen::Map<Eigen::VectorXd>(m.traction.values().data(), m.traction.values().size()),
-                                           Eigen::Map<Eigen::VectorXd>(m.traction_grid.data(), m.traction_grid.size()),
-                                           Eigen::Map<Eigen::VectorXd>(m.dilatation.data(), m.dilatation.size()),
-                                           Eigen::Map<Eigen::VectorXd>(m.principal_tension.data(), m.principal_tension.size()),
-                                           Eigen::Map<Eigen::VectorXd>(&m.elastic_energy, 1)}) {
-      f(packed.segment(at, v.size()), v);
-      at += v.size();
-    }
-  };
-  for (int c = owned.begin; c < owned.end; ++c) each_array(c, [](auto&& to, auto&& from) { to = from; });
-  std::vector<int> counts;
-  for (int r = 0; r < ranks.size(); ++r) {
-    const OwnedRange b = owned_block(nc, r, ranks.size());
-    counts.push_back(static_cast<int>(offset[b.end] - offset[b.begin]));
-  }
-  const Eigen::VectorXd mine = packed.segment(offset[owned.begin], offset[owned.end] - offset[owned.begin]);
-  ranks.gather_pieces({mine.data(), static_cast<std::size_t>(mine.size())},
-                      {packed.data(), static_cast<std::size_t>(packed.size())}, counts);
-  for (int c = 0; c < nc; ++c) each_array(c, [](auto&& from, auto&& to) { to = from; });
+  share_blocks(ranks, items);
 }
 
+// Every cell's shape on every rank, from those of the ranks' own cells (owned_block).
+void share_shapes(std::vector<Cell>& cells, const Communicator& ranks) {
+  std::vector<std::vector<std::span<double>>> items;
+  for (Cell& c : cells) {
+    Eigen::MatrixXd& x = c.shape.coeffs().values();
+    items.push_back({std::span<double>(x.data(), static_cast<std::size_t>(x.size()))});
+  }
+  share_blocks(ranks, items);
+}
+
+// The largest of the ranks' values, the same on every rank.
+double largest(double value, const Communicator& ranks) { return -ranks.min(-value); }
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kMaxStartSweeps = 20;
@@ -406,7 +402,19 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   const SHTransform& tn = *grids_->n_grid;
   // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
   const bool ab2 = options_.scheme == TimeScheme::ab2 && state_.previous_velocity.rows() == nc * np;
-  for (int c = 0; c < nc; ++c) {
+  // Each rank moves, separates (collision.h) and corrects its block of the cells (owned_block),
+  // the ranks sharing the shapes after each; a cell that became invalid on one rank stops every
+  // rank (the first one named).
+  const Communicator& ranks = options_.domain.ranks;
+  const OwnedRange mine = owned_block(nc, ranks);
+  auto stop_if_invalid = [&](int first_invalid) {
+    first_invalid = static_cast<int>(ranks.min(first_invalid));
+    if (first_invalid < nc)
+      throw std::runtime_error("cell " + std::to_string(first_invalid) + " became invalid (NaN)" +
+                               at_step(state_.steps + 1));
+  };
+  int first_invalid = nc;
+  for (int c = mine.begin; c < mine.end; ++c) {
     const SHCoeffs rate = tn.analyze(s.velocity.middleRows(c * np, np));
     Eigen::MatrixXd& x = cells_[c].shape.coeffs().values();
     if (ab2) {
@@ -415,15 +423,15 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     } else {
       x += options_.dt * rate.values();
     }
-    if (!x.allFinite()) {
-      throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
-    }
+    if (!x.allFinite()) first_invalid = std::min(first_invalid, c);
   }
+  stop_if_invalid(first_invalid);
+  share_shapes(cells_, ranks);
   if (options_.collision_threshold > 0) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);
     const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
-    const CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold);
+    const CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold, ranks);
     // Surfaces left crossing (each other or the wall) make the boundary integrals meaningless
     // and the run blows up some steps later: stop here, at the last checkpoint's state.
     if (!k.converged && k.min_separation < 0) {
@@ -442,18 +450,23 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     report.wall_contacts = k.wall_contacts;
     report.collision_displacement = k.max_displacement;
   }
-  for (int c = 0; c < nc; ++c) {
+  for (int c = mine.begin; c < mine.end; ++c) {
     if (options_.volume_constraint) enforce_volume(c);
     const SurfaceGeometry g = cells_[c].shape.geometry(tn);
     const double dv = std::abs(enclosed_volume(g) / state_.volume0[c] - 1.0);
     const double da = std::abs(surface_area(g) / state_.area0[c] - 1.0);
     if (!std::isfinite(dv) || !std::isfinite(da)) {
-      throw std::runtime_error("cell " + std::to_string(c) + " became invalid (NaN)" + at_step(state_.steps + 1));
+      first_invalid = std::min(first_invalid, c);
+      continue;
     }
     report.max_volume_error = std::max(report.max_volume_error, dv);
     report.max_area_error = std::max(report.max_area_error, da);
-    state_.shapes[c] = cells_[c].shape.coeffs();
   }
+  stop_if_invalid(first_invalid);
+  report.max_volume_error = largest(report.max_volume_error, ranks);
+  report.max_area_error = largest(report.max_area_error, ranks);
+  share_shapes(cells_, ranks);
+  for (int c = 0; c < nc; ++c) state_.shapes[c] = cells_[c].shape.coeffs();
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {
@@ -476,13 +489,13 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
+    // The gap of each rank's block of the cells; the least over the ranks.
     std::vector<SHSurface> shapes;
     std::vector<Eigen::MatrixX3d> points;
-    for (const Cell& c : cells_) {
-      shapes.push_back(c.shape);
-      points.push_back(grids_->n_grid->synthesize(c.shape.coeffs()));
-    }
-    report.min_wall_gap = smallest_wall_distance(*wall_distance_, points);
+    const OwnedRange mine = owned_block(static_cast<int>(cells_.size()), options_.domain.ranks);
+    for (const Cell& c : cells_) shapes.push_back(c.shape);
+    for (int c = mine.begin; c < mine.end; ++c) points.push_back(grids_->n_grid->synthesize(cells_[c].shape.coeffs()));
+    report.min_wall_gap = options_.domain.ranks.min(smallest_wall_distance(*wall_distance_, points));
     if (s.tube_velocity && options_.tube->whole_period) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
     if (options_.tube && options_.tube->whole_period) {
       report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,

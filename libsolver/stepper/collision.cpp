@@ -6,10 +6,13 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 
 #include "geometry/cgal/aabb_tree.h"
 #include "geometry/surface/surface_projection.h"
+#include "libsolver/parallel/ownership.h"
+#include "libsolver/parallel/share_blocks.h"
 
 namespace rbcflow {
 namespace {
@@ -112,8 +115,11 @@ std::vector<Eigen::Vector3d> close_images(const CellView& a, const CellView& b, 
   return close;
 }
 
+// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero); the pairs,
+// contacts and smallest separation are the ranks' together.
 Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const SHTransform& t,
-            const Eigen::Vector3d& period, const WallDistance* wall, double h_s) {
+            const Eigen::Vector3d& period, const WallDistance* wall, double h_s, const OwnedRange& mine,
+            const Communicator& ranks) {
   const int n = static_cast<int>(cells.size());
   Pass pass;
   pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
@@ -130,8 +136,12 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       }
     }
   }
+  // The trees of the cells near this rank's.
+  std::vector<char> tree_needed(n, 0);
+  for (int a = mine.begin; a < mine.end; ++a)
+    for (const Neighbour& nb : near[a]) tree_needed[nb.b] = 1;
   for (int a = 0; a < n; ++a) {
-    if (near[a].empty()) continue;
+    if (!tree_needed[a]) continue;
     views[a].mesh = cells[a].triangulate(t);
     views[a].tree = std::make_unique<TriangleAabbTree>(views[a].mesh);
   }
@@ -144,7 +154,7 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   std::vector<double> cell_min(n, std::numeric_limits<double>::infinity());
   std::vector<int> cell_min_other(n, -1);
 #pragma omp parallel for schedule(dynamic)
-  for (int a = 0; a < n; ++a) {
+  for (int a = mine.begin; a < mine.end; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       const Neighbour& nb = near[a][k];
       double separation = std::numeric_limits<double>::infinity();
@@ -176,6 +186,8 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   // two see the same (two smooth surfaces), all of it when the other side's grid points find
   // none (a tip against a flat face, between the face's grid points). The shares sum to one,
   // so the pair ends h_s apart, not 2 h_s - d.
+  // Each side's deficit is found by its cell's rank, the other entries zero there: the ranks'
+  // sum is exact.
   std::vector<double> deficit(2 * static_cast<std::size_t>(pairs), 0.0);  // per pair: first side, second side
   std::vector<int> sides(pairs, 0);
   std::vector<std::vector<int>> side_of(n);
@@ -184,30 +196,39 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       const int pair = near[a][k].pair;
       const int side = sides[pair]++;
       side_of[a].push_back(side);
+      if (!mine.contains(a)) continue;
       for (const Contact& c : contacts[a][k]) deficit[2 * pair + side] = std::max(deficit[2 * pair + side], c.missing);
     }
   }
-  std::vector<char> pair_hit(pairs, 0);
-  for (int a = 0; a < n; ++a) {
+  ranks.sum(deficit);
+  std::vector<double> pair_hit(pairs, 0.0);
+  for (int a = mine.begin; a < mine.end; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       if (contacts[a][k].empty()) continue;
       const int pair = near[a][k].pair;
-      const double mine = deficit[2 * pair + side_of[a][k]], other = deficit[2 * pair + 1 - side_of[a][k]];
-      const double share = mine / (mine + other);
+      const double own = deficit[2 * pair + side_of[a][k]], other = deficit[2 * pair + 1 - side_of[a][k]];
+      const double share = own / (own + other);
       for (const Contact& c : contacts[a][k]) pass.push[a].row(c.point) += share * c.missing * c.normal.transpose();
       pass.moved[a] = 1;
-      pair_hit[pair] = 1;
+      pair_hit[pair] = 1.0;
     }
   }
-  for (int a = 0; a < n; ++a) {
+  for (int a = mine.begin; a < mine.end; ++a) {
     if (cell_min[a] < pass.min_separation) {
       pass.min_separation = cell_min[a];
       pass.closest_cell = a;
       pass.closest_other = cell_min_other[a];
     }
   }
-  pass.cell_pairs = static_cast<int>(std::count(pair_hit.begin(), pair_hit.end(), 1));
-  pass.wall_contacts = static_cast<int>(std::count(wall_hit.begin(), wall_hit.end(), 1));
+  // The ranks' smallest separation, at the first cell that has it (as one rank finds it).
+  const double smallest = ranks.min(pass.min_separation);
+  const int closest = static_cast<int>(ranks.min(pass.min_separation == smallest ? pass.closest_cell : n));
+  pass.closest_other = static_cast<int>(ranks.min(pass.closest_cell == closest ? pass.closest_other : n));
+  pass.closest_cell = closest;
+  pass.min_separation = smallest;
+  ranks.sum(pair_hit);
+  pass.cell_pairs = static_cast<int>(std::count_if(pair_hit.begin(), pair_hit.end(), [](double h) { return h > 0; }));
+  pass.wall_contacts = static_cast<int>(ranks.sum(static_cast<long>(std::count(wall_hit.begin(), wall_hit.end(), 1))));
   return pass;
 }
 
@@ -245,7 +266,7 @@ SHCoeffs fit_push(const SHTransform& t, const Eigen::MatrixXd& push, int order) 
 
 CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
                                   const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
-                                  int max_iterations) {
+                                  const Communicator& ranks, int max_iterations) {
   if (!(threshold > 0)) throw std::invalid_argument("remove_collisions: the threshold h_s must be positive");
   if (!grid_transform.grid().is_gauss())
     throw std::invalid_argument("remove_collisions: the grid transform needs a Gauss grid");
@@ -254,6 +275,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
       throw std::invalid_argument("remove_collisions: a cell's order exceeds that of the grid transform");
 
   const int n = static_cast<int>(cells.size());
+  const OwnedRange mine = owned_block(n, ranks);
   CollisionReport report;
   std::vector<SHCoeffs> before(n);
   for (int pass_index = 0;; ++pass_index) {
@@ -263,7 +285,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
       views[i].centre = views[i].points.colwise().mean().transpose();
       views[i].radius = (views[i].points.rowwise() - views[i].centre.transpose()).rowwise().norm().maxCoeff();
     }
-    const Pass pass = detect(cells, views, grid_transform, period, wall, threshold);
+    const Pass pass = detect(cells, views, grid_transform, period, wall, threshold, mine, ranks);
     if (pass_index == 0) {
       report.cell_pairs = pass.cell_pairs;
       report.wall_contacts = pass.wall_contacts;
@@ -272,26 +294,30 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     report.min_separation = pass.min_separation;
     report.closest_cell = pass.closest_cell;
     report.closest_other = pass.closest_other;
-    const bool any = std::find(pass.moved.begin(), pass.moved.end(), 1) != pass.moved.end();
-    if (!any) break;
+    const long moved = ranks.sum(static_cast<long>(std::count(pass.moved.begin(), pass.moved.end(), 1)));
+    if (moved == 0) break;
     if (pass_index == max_iterations) {
       report.converged = false;
       break;
     }
-    for (int i = 0; i < n; ++i) {
+    for (int i = mine.begin; i < mine.end; ++i) {
       if (!pass.moved[i]) continue;
       if (before[i].order() == 0) before[i] = cells[i].coeffs();
       cells[i].coeffs().values() += fit_push(grid_transform, pass.push[i], cells[i].order()).values();
     }
+    std::vector<std::vector<std::span<double>>> shapes;  // each rank's cells moved, on every rank
+    for (SHSurface& c : cells) shapes.push_back({std::span<double>(c.coeffs().values().data(), c.coeffs().values().size())});
+    share_blocks(ranks, shapes);
     ++report.passes;
   }
-  for (int i = 0; i < n; ++i) {
+  for (int i = mine.begin; i < mine.end; ++i) {
     if (before[i].order() == 0) continue;
     SHCoeffs change = cells[i].coeffs();
     change.values() -= before[i].values();
     report.max_displacement =
         std::max(report.max_displacement, grid_transform.synthesize(change).rowwise().norm().maxCoeff());
   }
+  report.max_displacement = -ranks.min(-report.max_displacement);
   return report;
 }
 

@@ -23,6 +23,7 @@
 #include "geometry/surface/sh_surface.h"
 #include "geometry/sph/sph_transform.h"
 #include "geometry/contact/wall_distance.h"
+#include "libsolver/parallel/communicator.h"
 
 namespace rbcflow {
 
@@ -43,9 +44,11 @@ struct CollisionReport {
 // one whose points are then the tested surface points; the correction is analysed at each
 // cell's own order) apart to separation `threshold`. `period`: box sides of the periodic
 // directions, 0 where not periodic. `wall` may be null. Cells with nothing closer than
-// `threshold` are left bit-identical.
+// `threshold` are left bit-identical. On several `ranks` each rank finds and fits the pushes of
+// its block of the cells (owned_block), the ranks sharing the pairs' deficits and, after each
+// pass, the moved shapes: the same bits on every rank and as on one.
 CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
                                   const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
-                                  int max_iterations = 20);
+                                  const Communicator& ranks = {}, int max_iterations = 20);
 
 }  // namespace rbcflow

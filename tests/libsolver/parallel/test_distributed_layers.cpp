@@ -21,6 +21,9 @@
 #include "libsolver/operators/cell_owners.h"
 #include "libsolver/parallel/owned_rows.h"
 #include "libsolver/spme/spme_plan.h"
+#include "libsolver/membrane/membrane_law.h"
+#include "libsolver/stepper/cell_stepper.h"
+#include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/cell_velocity.h"
 
 using namespace rbcflow;
@@ -761,6 +764,95 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
     EXPECT_LT(static_cast<int>(halo.size()), nc - owned.size());
     EXPECT_GT(ranks_reading_halo, 0);
     EXPECT_GT(halo_rows_written, 0);
+  }
+}
+
+// advance() on the ranks (cell_stepper.h): each rank moves and corrects its block of the cells
+// and the ranks share the shapes, which are then the same bits on every rank and as on one
+// rank (each cell's arithmetic is its owner's alone); a cell made invalid (NaN velocity) on one
+// rank stops every rank, naming it. Three red cells in free space in a shear flow, lambda = 1,
+// volume constraint on, one step from one rank's solution.
+TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
+  const Communicator world = Communicator::world();
+  const int N = 8;
+  const auto grids = CellGrids::make(N, 2 * N);
+  auto stepper_on = [&](const Communicator& ranks) {
+    std::vector<Cell> cells;
+    for (const SHCoeffs& x : three_cells(N)) {
+      Cell c;
+      c.shape = SHSurface(x);
+      c.membrane = std::make_shared<const Membrane>(c.shape, grids,
+                                                    MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
+      cells.push_back(std::move(c));
+    }
+    CellStepperOptions o;
+    o.dt = 1e-3;
+    o.background = [](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.z(), 0, 0); };
+    o.domain.ranks = ranks;
+    return CellStepper(std::move(cells), grids, o);
+  };
+  CellStepper one = stepper_on({}), shared = stepper_on(world);
+  FlowSolution s = one.solve();
+  const StepReport a = one.advance(s), b = shared.advance(s);
+  double largest = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd& x = shared.cells()[c].shape.coeffs().values();
+    largest = std::max(largest, (x - one.cells()[c].shape.coeffs().values()).cwiseAbs().maxCoeff());
+    EXPECT_EQ(spread_over_ranks(world, x), 0.0);
+  }
+  std::printf("  rank %d: cells moved, largest difference from one rank's %.1e; volume error %.2e\n", world.rank(),
+              largest, b.max_volume_error);
+  EXPECT_EQ(largest, 0.0);
+  EXPECT_EQ(a.max_volume_error, b.max_volume_error);
+  EXPECT_EQ(a.max_area_error, b.max_area_error);
+  s.velocity.row(s.velocity.rows() - 1)(0) = std::nan("");  // the last cell: the last rank's
+  try {
+    shared.advance(s);
+    ADD_FAILURE() << "advance moved a cell with a NaN velocity";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cell 2 became invalid (NaN) at step 2"), std::string::npos) << e.what();
+  }
+}
+
+// The collision removal on the ranks (collision.h): each rank pushes its block of the cells,
+// the pairs' deficits and the moved shapes shared; the shapes and the report are the same bits
+// on every rank and as on one rank. Four unit spheres at order 12 in a D = 3.5 tube (box
+// 4 x 4 x 8, periodic along it): the first two 0.01 apart, the third 0.05 through the wall,
+// the fourth overlapping the first's periodic image by 0.05 and 0.01 from the third, so that
+// on 2 and 3 ranks pairs cross the ranks' blocks.
+TEST(DistributedCollisions, OnTheRanksAsOnOne) {
+  const Communicator world = Communicator::world();
+  const int order = 12;
+  const SHTransform t = SHTransform::gauss(order);
+  const VesselMesh mesh = tube(TubeSpec{3.5, 2, Eigen::Vector3d(4, 4, 8), 0.2});
+  const WallDistance wall(mesh);
+  std::vector<SHSurface> one;
+  for (const Eigen::Vector3d& centre : {Eigen::Vector3d(2.0, 2.0, 1.0), Eigen::Vector3d(2.0, 2.0, 3.01),
+                                        Eigen::Vector3d(2.8, 2.0, 5.2), Eigen::Vector3d(2.0, 2.0, 7.05)}) {
+    SHSurface s = make_sphere(order);
+    s.translate(centre);
+    one.push_back(s);
+  }
+  std::vector<SHSurface> shared = one;
+  const CollisionReport a = remove_collisions(one, t, mesh.period, &wall, 0.05);
+  const CollisionReport b = remove_collisions(shared, t, mesh.period, &wall, 0.05, world);
+  std::printf("  rank %d: %d pairs, %d wall contacts, %d passes, separation %.5f (cells %d, %d), displacement %.4f\n",
+              world.rank(), b.cell_pairs, b.wall_contacts, b.passes, b.min_separation, b.closest_cell, b.closest_other,
+              b.max_displacement);
+  EXPECT_EQ(a.cell_pairs, 3);
+  EXPECT_EQ(a.wall_contacts, 1);
+  EXPECT_EQ(b.cell_pairs, a.cell_pairs);
+  EXPECT_EQ(b.wall_contacts, a.wall_contacts);
+  EXPECT_EQ(b.passes, a.passes);
+  EXPECT_EQ(b.converged, a.converged);
+  EXPECT_EQ(b.max_overlap, a.max_overlap);
+  EXPECT_EQ(b.max_displacement, a.max_displacement);
+  EXPECT_EQ(b.min_separation, a.min_separation);
+  EXPECT_EQ(b.closest_cell, a.closest_cell);
+  EXPECT_EQ(b.closest_other, a.closest_other);
+  for (std::size_t c = 0; c < one.size(); ++c) {
+    EXPECT_TRUE(shared[c].coeffs().values() == one[c].coeffs().values()) << "cell " << c;
+    EXPECT_EQ(spread_over_ranks(world, shared[c].coeffs().values()), 0.0);
   }
 }
 
