@@ -1,7 +1,8 @@
 #pragma once
 // The ranks that share a run (`mpirun -np P rbcflow run CASE.toml`). The state of a run (the
 // cells' shapes, the wall force, the wall solve's GMRES vectors) is replicated on every rank;
-// the work of the cells' operators is split by the cells each rank owns (ownership.h), and each
+// the work of the cells' operators, and of moving them, is split by the cells each rank owns
+// (ownership.h; share_blocks.h makes what each computed whole again), and each
 // product is summed over the ranks with sum(), or, where each rank keeps only its own rows (the
 // GMRES vectors of (10) and (12), owned_rows.h), by sending each owner the rows of its
 // part that are not zero (exchange). Every rank then takes the same decisions
