@@ -12,6 +12,7 @@
 #include "geometry/cgal/aabb_tree.h"
 #include "geometry/surface/surface_projection.h"
 #include "libsolver/parallel/ownership.h"
+#include "libsolver/wall/centroid_bins.h"
 #include "libsolver/parallel/share_blocks.h"
 
 namespace rbcflow {
@@ -124,11 +125,24 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   Pass pass;
   pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
   pass.moved.assign(n, 0);
-  // Each close pair is listed from both sides, so every cell pushes only its own points.
+  // Each close pair is listed from both sides, so every cell pushes only its own points. The
+  // candidates b of cell a are those whose centres lie within 2 r_max + h_s of a's (minimum
+  // image: an image of b within r_a + r_b + h_s has the minimum image within it too), from
+  // bins of the centres, in ascending order: the pairs of a loop over all, in its order.
   std::vector<std::vector<Neighbour>> near(n);
   int pairs = 0;
+  std::vector<Eigen::Vector3d> centres;
+  double largest_radius = 0.0;
+  for (const CellView& v : views) {
+    centres.push_back(v.centre);
+    largest_radius = std::max(largest_radius, v.radius);
+  }
+  const CentroidBins bins(centres, period, 2.0 * largest_radius + h_s);
+  std::vector<int> candidates;
   for (int a = 0; a < n; ++a) {
-    for (int b = a; b < n; ++b) {
+    bins.candidates(views[a].centre, candidates);
+    for (const int b : candidates) {
+      if (b < a) continue;
       for (const Eigen::Vector3d& o : close_images(views[a], views[b], a == b, period, h_s)) {
         near[a].push_back({b, o, pairs});
         near[b].push_back({a, -o, pairs});

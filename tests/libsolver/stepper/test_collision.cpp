@@ -154,6 +154,33 @@ TEST(Collision, SphereThroughTubeWallIsPushedInside) {
   EXPECT_LT(std::abs(volume(cells[0], t) - v0) / v0, 0.02);
 }
 
+// 48 unit spheres on a 4 x 4 x 3 lattice of spacing 2.5 in a periodic box 10 x 10 x 7.5 (gaps
+// of 0.5), those of the second and fourth columns along x moved 0.495 on: 24 pairs 0.005 apart,
+// 12 of them across the periodic face x = 10. The close pairs are searched in bins of the
+// cells' centres (collision.cpp): every touching pair is found and separated, and the others
+// (0.995 apart after the move) are left alone.
+TEST(Collision, ALatticeAcrossThePeriodFindsEveryTouchingPair) {
+  const int order = 8;
+  const SHTransform t = SHTransform::gauss(order);
+  const Eigen::Vector3d box(10, 10, 7.5);
+  std::vector<SHSurface> cells;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 3; ++k)
+        cells.push_back(sphere_at(Eigen::Vector3d(1.25 + 2.5 * i + (i % 2 == 1 ? 0.495 : 0.0), 1.25 + 2.5 * j, 1.25 + 2.5 * k), order));
+  const std::vector<SHSurface> before = cells;
+  const CollisionReport r = remove_collisions(cells, t, box, nullptr, kThreshold);
+  std::printf("pairs %d  passes %d  min separation %.5f\n", r.cell_pairs, r.passes, r.min_separation);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.cell_pairs, 24);
+  EXPECT_GE(r.min_separation, kThreshold - 1e-9);
+  int moved = 0;
+  for (std::size_t c = 0; c < cells.size(); ++c) moved += cells[c].coeffs().values() != before[c].coeffs().values();
+  EXPECT_EQ(moved, 48);  // every sphere is in one touching pair
+  const Eigen::Vector3d image(10, 0, 0);  // the fourth column's right neighbour is the first's image
+  EXPECT_GE(separation(cells[36], cells[0], t, image), kThreshold - 1e-9);
+}
+
 TEST(Collision, BadArgumentsAreErrors) {
   const SHTransform t = SHTransform::gauss(8);
   std::vector<SHSurface> cells{sphere_at({0, 0, 0}, kOrder)};
