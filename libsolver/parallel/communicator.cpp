@@ -141,6 +141,11 @@ double Communicator::min(double value) const {
   return low;
 }
 
+void Communicator::max(std::span<double> values) const {
+  if (size_ == 1 || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, comm_of(handle_));
+}
+
 int Communicator::ranks_on_this_machine() const {
   if (size_ == 1) return 1;
   MPI_Comm machine;
@@ -211,6 +216,7 @@ std::vector<int> Communicator::exchange_counts(std::span<const int> send_counts)
   return {send_counts.begin(), send_counts.end()};
 }
 double Communicator::min(double value) const { return value; }
+void Communicator::max(std::span<double>) const {}
 int Communicator::ranks_on_this_machine() const { return 1; }
 void Communicator::check_same(long, const std::string&) const {}
 bool built_with_mpi() { return false; }

@@ -52,6 +52,8 @@ class Communicator {
   std::vector<int> exchange_counts(std::span<const int> send_counts) const;
   // The smallest of the ranks' values, the same on every rank.
   double min(double value) const;
+  // Element-wise largest of the ranks' values, in place, the same on every rank (exact).
+  void max(std::span<double> values) const;
   // How many of the ranks share this rank's machine (its node: MPI_COMM_TYPE_SHARED).
   int ranks_on_this_machine() const;
   // Throws std::runtime_error naming `what` when the ranks hold different values of it (a

@@ -9,11 +9,14 @@
 #include <vector>
 
 #include "geometry/surface/sh_surface.h"
+#include "libsolver/parallel/communicator.h"
 
 namespace rbcflow {
 
-// `velocity`: the surface velocity stacked over the cells, in the point order of `grid`.
+// `velocity`: the surface velocity stacked over the cells, in the point order of `grid`. On
+// several `ranks` each sums its block of the cells (owned_block) and the result is the ranks'
+// sum (the same on every rank; another order of the sum than on one rank).
 double cells_volume_flux(const std::vector<SHSurface>& cells, const Eigen::MatrixXd& velocity, const SHTransform& grid,
-                         int axis);
+                         int axis, const Communicator& ranks = {});
 
 }  // namespace rbcflow

@@ -9,6 +9,7 @@
 
 #include "geometry/sph/sph_transform.h"
 #include "geometry/surface/sh_surface.h"
+#include "libsolver/parallel/communicator.h"
 #include "libsolver/stepper/tube_drive.h"
 
 namespace rbcflow {
@@ -19,8 +20,9 @@ struct CellFreeLayerBins {
 };
 
 // `period`: the tube's period along its axis. Throws std::invalid_argument without cells or
-// for bins that are not positive.
+// for bins that are not positive. On several `ranks` each bins the points of its block of the
+// cells (owned_block) and the edges are the ranks' largest: the same as on one rank.
 double cell_free_layer(const std::vector<SHSurface>& cells, const SHTransform& grid, const TubeSection& tube,
-                       double period, const CellFreeLayerBins& bins = {});
+                       double period, const CellFreeLayerBins& bins = {}, const Communicator& ranks = {});
 
 }  // namespace rbcflow

@@ -473,7 +473,7 @@ double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vecto
   const int a = options_.tube->axis;
   const double radius = options_.tube->radius;
   const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
-  return cells_volume_flux(shapes, s.velocity, *grids_->n_grid, a) / (options_.domain.box->lengths()[a] * tube_flux);
+  return cells_volume_flux(shapes, s.velocity, *grids_->n_grid, a, options_.domain.ranks) / (options_.domain.box->lengths()[a] * tube_flux);
 }
 
 StepReport CellStepper::advance(const FlowSolution& s) {
@@ -489,7 +489,8 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
-    // The gap of each rank's block of the cells; the least over the ranks.
+    // The gap, hematocrit and cell-free layer of each rank's block of the cells, reduced over
+    // the ranks.
     std::vector<SHSurface> shapes;
     std::vector<Eigen::MatrixX3d> points;
     const OwnedRange mine = owned_block(static_cast<int>(cells_.size()), options_.domain.ranks);
@@ -499,7 +500,8 @@ StepReport CellStepper::advance(const FlowSolution& s) {
     if (s.tube_velocity && options_.tube->whole_period) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
     if (options_.tube && options_.tube->whole_period) {
       report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
-                                               options_.domain.box->lengths()[options_.tube->axis]);
+                                               options_.domain.box->lengths()[options_.tube->axis], {},
+                                               options_.domain.ranks);
     }
   }
   if (!cells_.empty()) move_cells(s, report);
