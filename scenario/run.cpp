@@ -271,14 +271,15 @@ void Run::step() {
       if (!r.request.quiet && r.ranks.root()) std::printf("threads: %d from step %ld on (handed over by the study)\n", threads, n);
     }
     const auto t0 = Clock::now();
-    const FlowSolution s = stepper.solve();
+    FlowSolution s = stepper.solve();
     r.ranks.check_same(s.gmres_cells, "the cells' GMRES iterations");
     r.ranks.check_same(s.gmres_wall, "the wall's GMRES iterations");
     const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
-    if (n % c.output.every == 0 && !resumed_here) r.frame(stepper, s);
-    if (r.output && c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here) {
-      r.output->render(stepper, s);
-    }
+    const bool frame_now = n % c.output.every == 0 && !resumed_here;
+    const bool render_now = c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here;
+    if (frame_now || render_now) stepper.share_membranes(s);  // every rank: the frames draw every cell's
+    if (frame_now) r.frame(stepper, s);
+    if (r.output && render_now) r.output->render(stepper, s);
     const StepReport report = stepper.advance(s);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (r.output) {
@@ -310,7 +311,8 @@ void Run::finish() {
     CellStepper& stepper = *r.stepper;
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
-      const FlowSolution s = stepper.solve();  // on every rank: its products are shared
+      FlowSolution s = stepper.solve();  // on every rank: its products are shared
+      stepper.share_membranes(s);
       r.frame(stepper, s);
       if (r.output && c.output.render) r.output->render(stepper, s);
     }

@@ -401,7 +401,9 @@ std::vector<int> CellLayers::density_rows() const {
 }
 
 void CellLayers::report_memory(MemoryReport& report) const {
-  std::size_t geometry = matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight);
+  report.add("every cell's nodes (all ranks)",
+             matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight));
+  std::size_t geometry = 0;
   for (const auto& c : cells_)
     if (c) geometry += c->memory_bytes();
   report.add("cell geometry", geometry);

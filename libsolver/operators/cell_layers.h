@@ -97,8 +97,9 @@ class CellLayers {
   bool has_double_layer() const { return with_double_layer_; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs, of all ranks
   const CellLayersTimings& build_timings() const { return timings_; }
-  // What the step's cell operator holds on this rank (common/memory_report.h): "cell geometry", "self
-  // corrections: ...", "near corrections: ...", "cell Ewald single/double: ...".
+  // What the step's cell operator holds on this rank (common/memory_report.h): "every cell's
+  // nodes (all ranks)", "cell geometry" (the owned and halo cells'), "self corrections: ...",
+  // "near corrections: ...", "cell Ewald single/double: ...".
   void report_memory(MemoryReport& report) const;
 
   // Throws std::logic_error for another density than the one given to the constructor, if one was.

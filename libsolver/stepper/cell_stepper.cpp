@@ -31,14 +31,14 @@ std::vector<std::span<double>> arrays(MembraneState& m) {
 
 // Every cell's membrane state on every rank, from those of the ranks' own cells (owned_block;
 // the others sized here).
-void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<SHCoeffs>& shapes,
+void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<Cell>& cells,
                      int np, const Communicator& ranks) {
   if (ranks.size() == 1) return;
   std::vector<std::vector<std::span<double>>> items;
   for (std::size_t c = 0; c < membranes.size(); ++c) {
     MembraneState& m = membranes[c];
     if (!owned.contains(static_cast<int>(c))) {
-      m.traction = SHCoeffs(shapes[c].order(), 3);
+      m.traction = SHCoeffs(cells[c].shape.coeffs().order(), 3);
       m.traction_grid = Eigen::MatrixXd::Zero(np, 3);
       m.dilatation = Eigen::VectorXd::Zero(np);
       m.principal_tension = Eigen::MatrixXd::Zero(np, 2);
@@ -47,6 +47,21 @@ void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& ow
     items.push_back(arrays(m));
   }
   share_blocks(ranks, items);
+}
+
+// Every cell's membrane traction on the N grid (np x 3) on every rank: the rank's own cells'
+// (owned_block) from their membranes, the others' from their owners.
+std::vector<Eigen::MatrixXd> shared_tractions(std::vector<MembraneState>& membranes, const OwnedRange& owned, int np,
+                                              const Communicator& ranks) {
+  std::vector<Eigen::MatrixXd> others(membranes.size());
+  std::vector<std::vector<std::span<double>>> items;
+  for (std::size_t c = 0; c < membranes.size(); ++c) {
+    Eigen::MatrixXd& f = owned.contains(static_cast<int>(c)) ? membranes[c].traction_grid
+                                                             : (others[c] = Eigen::MatrixXd::Zero(np, 3));
+    items.push_back({std::span<double>(f.data(), static_cast<std::size_t>(f.size()))});
+  }
+  if (ranks.size() > 1) share_blocks(ranks, items);
+  return others;
 }
 
 // Every cell's shape on every rank, from those of the ranks' own cells (owned_block).
@@ -180,13 +195,15 @@ FlowSolution CellStepper::solve() const {
     s.membrane.resize(nc);
     s.traction.resize(nc * np, 3);
     ScopedTimer membrane_timer(timing.membrane);
-    // Each rank the membranes of its own cells; every rank then holds all (shared_membranes).
+    // Each rank the membranes of its own cells (owned_block); only their tractions go to every
+    // rank, the rest of their states when the output needs them (share_membranes).
     const OwnedRange owned = owned_block(nc, options_.domain.ranks);
     for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
 #pragma omp parallel for schedule(dynamic)
     for (int c = owned.begin; c < owned.end; ++c) s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
-    share_membranes(s.membrane, owned, shapes, np, options_.domain.ranks);
-    for (int c = 0; c < nc; ++c) s.traction.middleRows(c * np, np) = s.membrane[c].traction_grid;
+    const std::vector<Eigen::MatrixXd> others = shared_tractions(s.membrane, owned, np, options_.domain.ranks);
+    for (int c = 0; c < nc; ++c)
+      s.traction.middleRows(c * np, np) = owned.contains(c) ? s.membrane[c].traction_grid : others[c];
     for (int c = 0; c < nc; ++c) {
       if (cells_[c].body_force.isZero()) continue;
       const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
@@ -378,11 +395,29 @@ FlowSolution CellStepper::solve() const {
   if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
+  // What every rank still holds of every cell (docs/scaling.md): the shapes, the membranes'
+  // states and the traction on the N grid, this step's and the last three steps' velocities.
+  std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
+                           matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
+                           matrix_bytes(state_.oldest_velocity);
+  for (const Cell& c : cells_) every_cell += matrix_bytes(c.shape.coeffs().values());
+  for (const SHCoeffs& x : state_.shapes) every_cell += matrix_bytes(x.values());
+  for (const MembraneState& m : s.membrane)
+    every_cell += matrix_bytes(m.traction.values()) + matrix_bytes(m.traction_grid) + matrix_bytes(m.dilatation) +
+                  matrix_bytes(m.principal_tension);
+  s.memory.add("every cell's shape, membrane, velocity (all ranks)", every_cell);
   std::set<const RestMetrics*> rest_metrics;  // shared by the cells placed as copies of one shape
   for (const Cell& c : cells_)
     if (rest_metrics.insert(c.membrane->rest_metrics().get()).second)
       s.memory.add("membranes' rest metrics", c.membrane->rest_metrics()->memory_bytes());
   return s;
+}
+
+void CellStepper::share_membranes(FlowSolution& s) const {
+  const int nc = static_cast<int>(cells_.size());
+  if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_membranes: not this stepper's solution");
+  rbcflow::share_membranes(s.membrane, owned_block(nc, options_.domain.ranks), cells_, points_per_cell(),
+                           options_.domain.ranks);
 }
 
 void CellStepper::enforce_volume(int c) {
@@ -484,8 +519,10 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.wall_residual = s.wall_residual;
   report.mean_velocity = s.mean_velocity;
   report.pressure_gradient = s.pressure_gradient;
-  for (const MembraneState& m : s.membrane)
-    report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
+  for (const MembraneState& m : s.membrane)  // the rank's own cells' (the others' are empty until shared)
+    if (m.dilatation.size() > 0)
+      report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
+  report.max_area_strain = largest(report.max_area_strain, options_.domain.ranks);
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n

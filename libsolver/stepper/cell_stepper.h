@@ -64,7 +64,9 @@ struct Cell {
 struct FlowSolution {
   Eigen::MatrixXd velocity;   // U^n, stacked over cells (nodes x 3)
   Eigen::MatrixXd traction;   // hydrodynamic traction f^n on the cells, stacked
-  std::vector<MembraneState> membrane;  // per cell
+  // Per cell. On several ranks solve() fills only the rank's own block of the cells
+  // (owned_block) and leaves the others empty; CellStepper::share_membranes fills them all.
+  std::vector<MembraneState> membrane;
   PointField wall_force;      // F^n at the wall nodes (empty without a wall)
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();      // <u> used
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();  // (8); zero without a wall
@@ -134,6 +136,10 @@ class CellStepper {
   FlowSolution solve() const;
   StepReport advance(const FlowSolution& s);
   StepReport step() { return advance(solve()); }
+  // Every cell's membrane state in `s` (this stepper's solve()) on every rank, for output: solve()
+  // computes each rank's own cells' and shares only their tractions. Collective: every rank
+  // calls it; on one rank it changes nothing.
+  void share_membranes(FlowSolution& s) const;
 
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }

@@ -772,26 +772,28 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
 // rank (each cell's arithmetic is its owner's alone); a cell made invalid (NaN velocity) on one
 // rank stops every rank, naming it. Three red cells in free space in a shear flow, lambda = 1,
 // volume constraint on, one step from one rank's solution.
+// Three red cells (N = 8) in free space in a shear flow u = (z, 0, 0), lambda = 1, dt = 1e-3,
+// stepped on `ranks`.
+CellStepper three_cells_in_shear(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks) {
+  std::vector<Cell> cells;
+  for (const SHCoeffs& x : three_cells(grids->order)) {
+    Cell c;
+    c.shape = SHSurface(x);
+    c.membrane = std::make_shared<const Membrane>(c.shape, grids,
+                                                  MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
+    cells.push_back(std::move(c));
+  }
+  CellStepperOptions o;
+  o.dt = 1e-3;
+  o.background = [](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.z(), 0, 0); };
+  o.domain.ranks = ranks;
+  return CellStepper(std::move(cells), grids, o);
+}
+
 TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   const Communicator world = Communicator::world();
-  const int N = 8;
-  const auto grids = CellGrids::make(N, 2 * N);
-  auto stepper_on = [&](const Communicator& ranks) {
-    std::vector<Cell> cells;
-    for (const SHCoeffs& x : three_cells(N)) {
-      Cell c;
-      c.shape = SHSurface(x);
-      c.membrane = std::make_shared<const Membrane>(c.shape, grids,
-                                                    MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
-      cells.push_back(std::move(c));
-    }
-    CellStepperOptions o;
-    o.dt = 1e-3;
-    o.background = [](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.z(), 0, 0); };
-    o.domain.ranks = ranks;
-    return CellStepper(std::move(cells), grids, o);
-  };
-  CellStepper one = stepper_on({}), shared = stepper_on(world);
+  const auto grids = CellGrids::make(8, 16);
+  CellStepper one = three_cells_in_shear(grids, {}), shared = three_cells_in_shear(grids, world);
   FlowSolution s = one.solve();
   const StepReport a = one.advance(s), b = shared.advance(s);
   double largest = 0.0;
@@ -812,6 +814,47 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("cell 2 became invalid (NaN) at step 2"), std::string::npos) << e.what();
   }
+}
+
+// The membranes on the ranks (cell_stepper.h): each rank computes its block of the cells'
+// membranes and shares only their tractions, which are then the same bits on every rank and as on
+// one rank; the largest area strain is the ranks' largest; share_membranes gives every rank
+// every cell's state, the same bits as one rank's. From the state after one step with cell 2's
+// velocity ten times the solution's, so that the last rank's cell is strained most.
+TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
+  const Communicator world = Communicator::world();
+  const auto grids = CellGrids::make(8, 16);
+  CellStepper one = three_cells_in_shear(grids, {}), shared = three_cells_in_shear(grids, world);
+  FlowSolution first = one.solve();
+  first.velocity.bottomRows(first.velocity.rows() / 3) *= 10.0;
+  one.advance(first);
+  shared.advance(first);
+  FlowSolution a = one.solve(), b = shared.solve();
+  const OwnedRange mine = owned_block(3, world);
+  EXPECT_EQ((b.traction - a.traction).cwiseAbs().maxCoeff(), 0.0);
+  for (int c = 0; c < 3; ++c) {
+    if (mine.contains(c)) {
+      EXPECT_EQ(b.membrane[c].dilatation, a.membrane[c].dilatation);
+    } else {
+      EXPECT_EQ(b.membrane[c].dilatation.size(), 0) << "cell " << c << " is another rank's";
+    }
+  }
+  auto strain = [&](int c) { return (a.membrane[c].dilatation.array() - 1.0).abs().maxCoeff(); };
+  std::printf("  rank %d: the cells' largest area strains %.3e %.3e %.3e\n", world.rank(), strain(0), strain(1), strain(2));
+  EXPECT_GT(strain(2), 2 * std::max(strain(0), strain(1)));
+  const FlowSolution unshared = b;
+  shared.share_membranes(b);
+  for (int c = 0; c < 3; ++c) {
+    const MembraneState &x = a.membrane[c], &y = b.membrane[c];
+    EXPECT_EQ(y.traction.values(), x.traction.values()) << "cell " << c;
+    EXPECT_EQ(y.traction_grid, x.traction_grid) << "cell " << c;
+    EXPECT_EQ(y.dilatation, x.dilatation) << "cell " << c;
+    EXPECT_EQ(y.principal_tension, x.principal_tension) << "cell " << c;
+    EXPECT_EQ(y.elastic_energy, x.elastic_energy) << "cell " << c;
+  }
+  const StepReport ra = one.advance(a), rb = shared.advance(unshared);
+  EXPECT_GT(ra.max_area_strain, 0.0);
+  EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
 }
 
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells,
