@@ -370,16 +370,6 @@ FlowSolution CellStepper::solve() const {
     if (what.find(" at step ") != std::string::npos) throw;
     throw std::runtime_error(what + at_step(step));
   }
-  if (layers) {
-    // The step's halo: the layers' and the cells whose stencils reach this rank's slabs of the
-    // grids of the layers at the wall (their densities read) and of the wall at the cells
-    // (their rows of its part).
-    std::vector<SlabPlanes> other_slabs;
-    if (at_wall) other_slabs = at_wall->slabs();
-    if (wall_at_cells)
-      if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
-    s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
-  }
   if (section_meter_) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);
@@ -387,6 +377,17 @@ FlowSolution CellStepper::solve() const {
     const CellsAtStep cells_now{layers.get(), traction, &s.velocity, &shapes,
                               nc > 0 ? grids_->n_grid.get() : nullptr, lambda};
     s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
+  }
+  if (layers) {
+    // The step's halo: the layers' and the cells whose stencils reach this rank's slabs of the
+    // grids of the layers at the wall and at the flux sections (their densities read) and of
+    // the wall at the cells (their rows of its part).
+    std::vector<SlabPlanes> other_slabs;
+    if (at_wall) other_slabs = at_wall->slabs();
+    if (section_meter_) other_slabs.insert(other_slabs.end(), section_meter_->slabs().begin(), section_meter_->slabs().end());
+    if (wall_at_cells)
+      if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
+    s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
   if (!owners.in_cell_order()) s.velocity = owners.to_cell_order(s.velocity, np);
   total_timer.stop();

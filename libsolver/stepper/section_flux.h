@@ -45,6 +45,9 @@ class SectionFluxMeter {
   // The flux through each branch, along its sections' normal; `cells` null without cells.
   std::vector<double> fluxes(const Eigen::Vector3d& mean_velocity, const PointField& wall_force,
                              const CellsAtStep* cells);
+  // This rank's slabs of the grids the last fluxes() with cells read the cells' densities on
+  // (CellLayersAtPoints::slabs; empty before): part of the step's halo (CellLayers::halo_with).
+  const std::vector<SlabPlanes>& slabs() const { return slabs_; }
 
  private:
   struct Candidate {
@@ -57,6 +60,7 @@ class SectionFluxMeter {
 
   PeriodicBox box_;
   std::vector<std::vector<Candidate>> branches_;
+  std::vector<SlabPlanes> slabs_;
 };
 
 }  // namespace rbcflow
