@@ -14,6 +14,7 @@
 #include "libsolver/linear/anderson_mixing.h"
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/operators/cell_owners.h"
+#include "libsolver/parallel/owned_rows.h"
 #include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
@@ -323,16 +324,26 @@ FlowSolution CellStepper::solve() const {
     s.cell_residual = v.gmres.relative_residual;
   };
 
-  Eigen::MatrixXd velocity_guess =
-      extrapolated<Eigen::MatrixXd>({&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity});
-  Eigen::MatrixXd previous_of_owners;
-  const Eigen::MatrixXd* previous = &state_.previous_velocity;
-  if (!owners.in_cell_order() && previous->rows() == nc * np) {
-    previous_of_owners = owners.to_owner_order(*previous, np);
-    previous = &previous_of_owners;
-    velocity_guess = owners.to_owner_order(velocity_guess, np);
+  // The velocities' history is kept by the cells' index blocks (owned_block): each rank brings
+  // the rows its products read, in owner order and zero elsewhere: its own cells' for the guess
+  // of (10) and, for the cells' double layer at the wall, those of the wall's halo too.
+  Eigen::MatrixXd velocity_guess, previous_velocity;
+  if (nc > 0 && velocities_held() > 0) {
+    OwnedRows homes(nc, np, options_.domain.ranks);
+    if (options_.domain.ranks.size() > 1) {
+      const int r = options_.domain.ranks.rank();
+      std::vector<int> read(owners.order.begin() + owners.first[r], owners.order.begin() + owners.first[r + 1]);
+      if (at_wall && lambda != 1.0)
+        for (int k : layers->halo_with(at_wall->slabs())) read.push_back(owners.order[k]);
+      std::sort(read.begin(), read.end());
+      std::vector<int> rows;
+      for (int c : read)
+        for (int i = 0; i < np; ++i) rows.push_back(c * np + i);
+      homes.read_only(rows);
+    }
+    velocity_guess = owners.to_owner_order(homes.gather_read(extrapolated_velocity()), np);
+    previous_velocity = owners.to_owner_order(homes.gather_read(state_.previous_velocity), np);
   }
-  const Eigen::MatrixXd& previous_velocity = *previous;
   try {
     const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
     if (start_sweeps) sweep_tolerance = kStartSweepForcing;  // U = 0 in (12): an O(1) change to come
@@ -437,7 +448,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   const int np = points_per_cell();
   const SHTransform& tn = *grids_->n_grid;
   // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
-  const bool ab2 = options_.scheme == TimeScheme::ab2 && state_.previous_velocity.rows() == nc * np;
+  const bool ab2 = options_.scheme == TimeScheme::ab2 && velocities_held() > 0;
   // Each rank moves, separates (collision.h) and corrects its block of the cells (owned_block),
   // the ranks sharing the shapes after each; a cell that became invalid on one rank stops every
   // rank (the first one named).
@@ -454,7 +465,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     const SHCoeffs rate = tn.analyze(s.velocity.middleRows(c * np, np));
     Eigen::MatrixXd& x = cells_[c].shape.coeffs().values();
     if (ab2) {
-      const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows(c * np, np));
+      const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows((c - mine.begin) * np, np));
       x += options_.dt * (1.5 * rate.values() - 0.5 * previous.values());
     } else {
       x += options_.dt * rate.values();
@@ -546,14 +557,43 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   state_.oldest_velocity = std::move(state_.older_velocity);
   state_.older_velocity = std::move(state_.previous_velocity);
   state_.older_wall_force = std::move(state_.previous_wall_force);
-  state_.previous_velocity = s.velocity;
+  if (!cells_.empty()) {  // this rank's block of the cells' rows
+    const OwnedRange mine = owned_block(static_cast<int>(cells_.size()), options_.domain.ranks);
+    state_.previous_velocity = s.velocity.middleRows(mine.begin * points_per_cell(), mine.size() * points_per_cell());
+  } else {
+    state_.previous_velocity = s.velocity;
+  }
   state_.previous_wall_force = s.wall_force;
   state_.time += options_.dt;
   ++state_.steps;
   return report;
 }
 
-StepperState CellStepper::state() const { return state_; }
+int CellStepper::velocities_held() const {
+  int held = 0;
+  for (const Eigen::MatrixXd* u : {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity}) {
+    if (u->cols() != 3) break;
+    ++held;
+  }
+  return held;
+}
+
+Eigen::MatrixXd CellStepper::extrapolated_velocity() const {
+  switch (velocities_held()) {
+    case 1: return state_.previous_velocity;
+    case 2: return 2 * state_.previous_velocity - state_.older_velocity;
+    default: return 3 * (state_.previous_velocity - state_.older_velocity) + state_.oldest_velocity;
+  }
+}
+
+StepperState CellStepper::state() const {
+  StepperState s = state_;
+  if (cells_.empty()) return s;
+  const OwnedRows homes(static_cast<int>(cells_.size()), points_per_cell(), options_.domain.ranks);
+  for (Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity})
+    if (u->cols() == 3) *u = homes.gather(*u);
+  return s;
+}
 
 void CellStepper::restore(const StepperState& s) {
   const std::size_t nc = cells_.size();
@@ -575,6 +615,14 @@ void CellStepper::restore(const StepperState& s) {
   }
   state_ = s;
   for (std::size_t c = 0; c < nc; ++c) cells_[c].shape.coeffs() = s.shapes[c];
+  const OwnedRange mine = owned_block(static_cast<int>(nc), options_.domain.ranks);
+  for (Eigen::MatrixXd* u : {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity}) {
+    if (u->size() == 0) {
+      u->resize(0, 0);  // absent
+    } else {
+      *u = u->middleRows(mine.begin * np, mine.size() * np).eval();  // this rank's block
+    }
+  }
 }
 
 }  // namespace rbcflow

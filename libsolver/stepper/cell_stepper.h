@@ -150,11 +150,13 @@ class CellStepper {
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
-  // Surface velocity of the last step, stacked over cells (nodes x 3).
+  // Surface velocity of the last step, stacked over this rank's block of the cells
+  // (owned_block: every cell on one rank; nodes x 3).
   const Eigen::MatrixXd& velocity() const { return state_.previous_velocity; }
   const std::vector<double>& initial_volumes() const { return state_.volume0; }
   const std::vector<double>& initial_areas() const { return state_.area0; }
 
+  // The whole state, every cell's velocities gathered from the ranks: collective.
   StepperState state() const;
   // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
   void restore(const StepperState& s);
@@ -171,6 +173,10 @@ class CellStepper {
 
  private:
   void archive_wall(StateArchive& a) const;
+  // How many of U^{n-1}, U^{n-2}, U^{n-3} the state holds (0-3), and the guess of U^n from them
+  // (3 U^{n-1} - 3 U^{n-2} + U^{n-3}, or fewer terms): this rank's block of the cells' rows.
+  int velocities_held() const;
+  Eigen::MatrixXd extrapolated_velocity() const;
   void enforce_volume(int c);
   // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
   // cells' current shapes.
@@ -191,6 +197,8 @@ class CellStepper {
   // freed before it returns.
   std::shared_ptr<WorkArrayPool> work_arrays_ = std::make_shared<WorkArrayPool>();
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>(work_arrays_);  // the cells' SPME grids
+  // The velocities in it are this rank's block of the cells' rows (owned_block), absent ones
+  // 0 x 0; state() gathers them.
   StepperState state_;
 };
 

@@ -63,7 +63,7 @@ void CellStepper::archive_wall(StateArchive& a) const {
 }
 
 void CellStepper::save(StateArchive& a) const {
-  StepperState s = state_;
+  StepperState s = state();
   s.archive(a);
   archive_wall(a);
 }

@@ -757,6 +757,15 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
   EXPECT_FALSE(outside_read);
   EXPECT_EQ(nonzero_outside, 0);
   EXPECT_TRUE(std::includes(halo.begin(), halo.end(), layers.halo().begin(), layers.halo().end()));
+  // The stepper brings a rank the velocities' history only at its owned cells and their halo at
+  // the wall (the layers' and the cells reaching the at-wall grids' slabs): the double layer at
+  // the wall reads nothing else.
+  const std::vector<int> wall_halo = layers.halo_with(at_wall.slabs());
+  Eigen::MatrixXd nan_beyond_wall_halo = f;
+  for (int c = 0; c < nc; ++c)
+    if (!owned.contains(c) && !std::binary_search(wall_halo.begin(), wall_halo.end(), c))
+      nan_beyond_wall_halo.middleRows(static_cast<long>(c) * np, np).setConstant(std::nan(""));
+  EXPECT_TRUE(at_wall.double_layer_part(nan_beyond_wall_halo).allFinite());
   // Whether a rank reads or writes its halo's rows depends on where its slab ends: on some rank.
   const long ranks_reading_halo = world.sum(static_cast<long>(halo_read));
   const long halo_rows_written = world.sum(static_cast<long>(nonzero_in_halo));
@@ -807,6 +816,9 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   EXPECT_EQ(largest, 0.0);
   EXPECT_EQ(a.max_volume_error, b.max_volume_error);
   EXPECT_EQ(a.max_area_error, b.max_area_error);
+  // Each rank keeps its block's rows of U^n; state() gathers every cell's.
+  EXPECT_EQ(shared.velocity().rows(), owned_block(3, world).size() * s.velocity.rows() / 3);
+  EXPECT_EQ(shared.state().previous_velocity, one.state().previous_velocity);
   s.velocity.row(s.velocity.rows() - 1)(0) = std::nan("");  // the last cell: the last rank's
   try {
     shared.advance(s);
