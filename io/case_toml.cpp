@@ -136,8 +136,14 @@ class Table {
     if (!v) return std::nullopt;
     return to_real(key, *v, r);
   }
+  // The value of `key`, or `fallback` where it is absent; a default out of the range that the
+  // case's other values set (an element size larger than a thin vessel's radius) is an error,
+  // as the same value written out would be.
   double real(const std::string& key, double fallback, const Range& r) {
-    return optional_real(key, r).value_or(fallback);
+    if (const std::optional<double> x = optional_real(key, r)) return *x;
+    if (!r.contains(fallback))
+      fail(key, "the default " + number_text(fallback) + " is out of range here (allowed: " + r.text() + "); set it");
+    return fallback;
   }
 
   int to_integer(const std::string& key, const toml::value& v, long lo, long hi) const {

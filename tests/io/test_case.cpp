@@ -314,6 +314,11 @@ TEST(Case, OutOfRangeValuesNameTheAllowedRange) {
             "bad.toml:5: vessel.diameter: 12 is out of range (allowed: 0 < x < 10)");
   EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 4\nelement_size = 0\n")),
             "bad.toml:6: vessel.element_size: 0 is out of range (allowed: 0 < x <= 2)");
+  // A default that the other values put out of range (0.25 in a vessel of radius 0.1: a
+  // diameter in metres, say) is named as a value would be (found by fuzz.case_toml_short: the
+  // case read, and its written form did not).
+  EXPECT_EQ(error_of(minimal("[vessel]\ndiameter = 0.2\n")),
+            "bad.toml:4: vessel.element_size: the default 0.25 is out of range here (allowed: 0 < x <= 0.1); set it");
   EXPECT_EQ(error_of(minimal("[vessel]\nkind = \"constriction\"\ndiameter = 3.5\ndepth = 3.5\nwidth = 1\n")),
             "bad.toml:7: vessel.depth: 3.5 is out of range (allowed: 0 < x < 3.5)");
   EXPECT_EQ(error_of(minimal("[time]\nend = -1\n")), "bad.toml:5: time.end: -1 is out of range (allowed: 0 < x)");
