@@ -407,8 +407,9 @@ FlowSolution CellStepper::solve() const {
   if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
-  // What every rank still holds of every cell (docs/scaling.md): the shapes, the membranes'
-  // states and the traction on the N grid, this step's and the last three steps' velocities.
+  // The cells' state held on this rank (docs/scaling.md): every cell's shapes, traction on the
+  // N grid and this step's velocity, and its block's membrane states and last three velocities
+  // (every cell's on one rank).
   std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
