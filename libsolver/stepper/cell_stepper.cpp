@@ -135,7 +135,6 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     const SurfaceGeometry g = c.shape.geometry(*grids_->n_grid);
     state_.volume0.push_back(enclosed_volume(g));
     state_.area0.push_back(surface_area(g));
-    state_.shapes.push_back(c.shape.coeffs());
   }
 }
 
@@ -414,7 +413,6 @@ FlowSolution CellStepper::solve() const {
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
   for (const Cell& c : cells_) every_cell += matrix_bytes(c.shape.coeffs().values());
-  for (const SHCoeffs& x : state_.shapes) every_cell += matrix_bytes(x.values());
   for (const MembraneState& m : s.membrane)
     every_cell += matrix_bytes(m.traction.values()) + matrix_bytes(m.traction_grid) + matrix_bytes(m.dilatation) +
                   matrix_bytes(m.principal_tension);
@@ -514,7 +512,6 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   report.max_volume_error = largest(report.max_volume_error, ranks);
   report.max_area_error = largest(report.max_area_error, ranks);
   share_shapes(cells_, ranks);
-  for (int c = 0; c < nc; ++c) state_.shapes[c] = cells_[c].shape.coeffs();
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {
@@ -589,6 +586,7 @@ Eigen::MatrixXd CellStepper::extrapolated_velocity() const {
 
 StepperState CellStepper::state() const {
   StepperState s = state_;
+  for (const Cell& c : cells_) s.shapes.push_back(c.shape.coeffs());
   if (cells_.empty()) return s;
   const OwnedRows homes(static_cast<int>(cells_.size()), points_per_cell(), options_.domain.ranks);
   for (Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity})
@@ -615,6 +613,7 @@ void CellStepper::restore(const StepperState& s) {
       throw std::invalid_argument("restore: a previous wall force does not fit the wall");
   }
   state_ = s;
+  state_.shapes.clear();  // held once, in the cells
   for (std::size_t c = 0; c < nc; ++c) cells_[c].shape.coeffs() = s.shapes[c];
   const OwnedRange mine = owned_block(static_cast<int>(nc), options_.domain.ranks);
   for (Eigen::MatrixXd* u : {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity}) {

@@ -198,7 +198,8 @@ class CellStepper {
   std::shared_ptr<WorkArrayPool> work_arrays_ = std::make_shared<WorkArrayPool>();
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>(work_arrays_);  // the cells' SPME grids
   // The velocities in it are this rank's block of the cells' rows (owned_block), absent ones
-  // 0 x 0; state() gathers them.
+  // 0 x 0; state() gathers them. Its shapes are empty: they are held once, in cells_, and
+  // state() copies them.
   StepperState state_;
 };
 
