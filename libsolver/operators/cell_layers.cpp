@@ -75,7 +75,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     if (single_layer_density->rows() != static_cast<Eigen::Index>(cells.size()) * nodes_per_cell() ||
         single_layer_density->cols() != 3)
       throw std::invalid_argument("CellLayers: the single-layer density must be (nodes x 3)");
-    single_density_ = *single_layer_density;
+    single_density_ = single_layer_density;
   }
   ScopedTimer geometry_timer(timings_.geometry);
   const int nc = num_cells_, np = nodes_per_cell();
@@ -363,7 +363,7 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 Eigen::MatrixXd CellLayers::single_layer_part(const Eigen::MatrixXd& f) {
   if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
   if (single_part_) {
-    if (f != *single_density_)
+    if (&f != single_density_)
       throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
     return *single_part_;
   }
@@ -407,7 +407,7 @@ void CellLayers::report_memory(MemoryReport& report) const {
   for (const auto& c : cells_)
     if (c) geometry += c->memory_bytes();
   report.add("cell geometry", geometry);
-  if (single_part_) report.add("single layer of the step's traction", matrix_bytes(*single_part_) + matrix_bytes(*single_density_));
+  if (single_part_) report.add("single layer of the step's traction", matrix_bytes(*single_part_));
   for (int c = owned_.begin; c < owned_.end; ++c) {
     if (self_single_[c]) self_single_[c]->report_memory(report, "self corrections");
     if (self_double_[c]) self_double_[c]->report_memory(report, "self corrections", !self_single_[c]);

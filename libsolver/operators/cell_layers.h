@@ -78,7 +78,9 @@ class CellLayers {
   // only one a time step needs (its traction, in every sweep of the step), is computed here,
   // each cell's single-layer corrections applied as soon as they are built and freed, and the
   // single-layer Ewald plan freed after its one product: kept, they were a third of a step's
-  // memory. single_layer(f) and single_layer_part(f) then return it, for that density only.
+  // memory. single_layer(f) and single_layer_part(f) then return it, for that density only: the
+  // same matrix, which is read only here (the caller keeps it while this is built; no copy of a
+  // vector of every node is held after).
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
              const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true,
              SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr);
@@ -169,9 +171,11 @@ class CellLayers {
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
-  // With a single_layer_density: that density and this rank's part of its single layer (the
-  // corrections and the single-layer plan above are then empty).
-  std::optional<Eigen::MatrixXd> single_density_, single_part_;
+  // With a single_layer_density: that density (read only while this is built, then only its
+  // address compared) and this rank's part of its single layer (the corrections and the
+  // single-layer plan above are then empty).
+  const Eigen::MatrixXd* single_density_ = nullptr;
+  std::optional<Eigen::MatrixXd> single_part_;
   bool with_double_layer_ = true;
   CellLayersTimings timings_;
 };

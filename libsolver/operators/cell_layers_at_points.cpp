@@ -16,7 +16,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   if (single_layer_density) {
     if (single_layer_density->rows() != layers.nodes().size() || single_layer_density->cols() != 3)
       throw std::invalid_argument("CellLayersAtPoints: the single-layer density must be (cell nodes x 3)");
-    single_density_ = *single_layer_density;
+    single_density_ = single_layer_density;
   }
   const LayerDomain& domain = layers.domain();
   const int nc = layers.num_cells();
@@ -132,7 +132,7 @@ Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) 
   const SourceNodes& nodes = layers_.nodes();
   if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
   if (single_part_) {
-    if (f != *single_density_)
+    if (&f != single_density_)
       throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
     return *single_part_;
   }
@@ -162,7 +162,7 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer_part(const Eigen::MatrixXd& u) 
 
 void CellLayersAtPoints::report_memory(MemoryReport& report, const std::string& prefix) const {
   report.add(prefix + " near corrections: targets", matrix_bytes(points_));
-  if (single_part_) report.add(prefix + " single layer of the step's traction", matrix_bytes(*single_part_) + matrix_bytes(*single_density_));
+  if (single_part_) report.add(prefix + " single layer of the step's traction", matrix_bytes(*single_part_));
   for (const Near& n : near_) {
     report.add(prefix + " near corrections: targets", heap_bytes(n.rows));
     if (n.single) n.single->report_memory(report, prefix + " near corrections");

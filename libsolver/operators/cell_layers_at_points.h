@@ -18,7 +18,8 @@ namespace rbcflow {
 class CellLayersAtPoints {
  public:
   // single_layer_density: as in CellLayers, the one single-layer density of the step (its
-  // traction), whose single layer is computed here with its corrections and plan freed after use.
+  // traction), whose single layer is computed here with its corrections and plan freed after use;
+  // single_layer then takes that matrix only (the same object, read only here).
   CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
                      const Eigen::MatrixXd* single_layer_density = nullptr);
   ~CellLayersAtPoints();
@@ -29,7 +30,7 @@ class CellLayersAtPoints {
   void report_memory(MemoryReport& report, const std::string& prefix) const;
 
   // Densities stacked over the cells as in CellLayers; the results have one row per point.
-  // single_layer throws std::logic_error for another density than the constructor's, if given.
+  // single_layer throws std::logic_error for another matrix than the constructor's, if given.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u) const;
   // This rank's parts of the two (its cells as sources, its slab of the grid): the layers are
@@ -58,7 +59,8 @@ class CellLayersAtPoints {
   Eigen::MatrixXd points_;
   std::vector<Near> near_;  // per cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
-  std::optional<Eigen::MatrixXd> single_density_, single_part_;  // the part, of single_layer_density
+  const Eigen::MatrixXd* single_density_ = nullptr;  // read only while built, then its address compared
+  std::optional<Eigen::MatrixXd> single_part_;        // this rank's part, of single_density_
   std::vector<SlabPlanes> slabs_;
 };
 

@@ -186,9 +186,9 @@ FlowSolution CellStepper::solve() const {
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
   // The layer products take the cells in their owners' order (cell_owners.h; the cells' own on
-  // one rank): the node data of the products below are in that order, s.velocity until the end.
+  // one rank): the node data of the products below are in that order, s.traction and s.velocity
+  // until the end (one copy of each; the operators refer to s.traction).
   CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
-  Eigen::MatrixXd traction_of_owners;  // s.traction in the owners' order, where it differs
   const Eigen::MatrixXd* traction = &s.traction;
   if (nc > 0) {
     std::vector<SHCoeffs> shapes(nc);
@@ -214,8 +214,7 @@ FlowSolution CellStepper::solve() const {
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
     if (!owners.in_cell_order()) {
-      traction_of_owners = owners.to_owner_order(s.traction, np);
-      traction = &traction_of_owners;
+      s.traction = owners.to_owner_order(s.traction, np);
       shapes = owners.to_owner_order(shapes);
     }
     // The traction is the step's only single-layer density: its single layer is computed as
@@ -399,7 +398,10 @@ FlowSolution CellStepper::solve() const {
       if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
     s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
-  if (!owners.in_cell_order()) s.velocity = owners.to_cell_order(s.velocity, np);
+  if (!owners.in_cell_order()) {
+    s.velocity = owners.to_cell_order(s.velocity, np);
+    s.traction = owners.to_cell_order(s.traction, np);
+  }
   total_timer.stop();
   if (layers) layers->report_memory(s.memory);
   if (at_wall) at_wall->report_memory(s.memory, "at wall:");
