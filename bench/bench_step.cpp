@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "libsolver/parallel/communicator.h"
+#include "libsolver/parallel/ownership.h"
 #include "step_cases.h"
 
 using namespace rbcflow;
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
     double best_step = 1e300, best_cpu = 1e300;
     KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
-    long last_rows_received = 0, last_nodes = 0, last_wall_received = 0;
+    long last_rows_received = 0, last_nodes = 0, last_wall_received = 0, last_traction_received = 0;
     int last_iterations = 0, last_wall_iterations = 0, last_owned = 0, last_halo = 0;
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
@@ -139,6 +140,7 @@ int main(int argc, char** argv) {
       if (k <= 2) std::printf("       peak memory after step %d: %.0f MB\n", k, peak_resident_mb());
       memory = s.memory;
       last_rows_received = s.cell_rows_received;
+      last_traction_received = s.traction_rows_received;
       last_wall_received = s.wall_nodes_received;
       last_wall_iterations = s.gmres_wall;
       last_iterations = s.gmres_cells;
@@ -167,6 +169,10 @@ int main(int argc, char** argv) {
                    ranks.rank(), last_rows_received, last_iterations, last_nodes);
       std::fprintf(stderr, "rank %d: %d cells owned in the last step's products, a halo of %d of the other %d\n", ranks.rank(),
                    last_owned, last_halo, static_cast<int>(stepper->cells().size()) - last_owned);
+      std::fprintf(stderr, "rank %d: %ld node rows of the traction received in the last step (all-gathered: %ld)\n",
+                   ranks.rank(), last_traction_received,
+                   last_nodes - static_cast<long>(owned_block(static_cast<int>(stepper->cells().size()), ranks).size()) *
+                                    (last_nodes / std::max<long>(1, static_cast<long>(stepper->cells().size()))));
       if (stepper->wall())
         std::fprintf(stderr, "rank %d: %ld wall nodes received in the last step's wall solves, %d GMRES iterations, %d wall nodes\n",
                      ranks.rank(), last_wall_received, last_wall_iterations, stepper->wall()->elements().num_nodes());

@@ -63,7 +63,8 @@ std::vector<int> CellLayers::owned_first() const {
 
 CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
                        const LayerDomain& domain, const QuadratureOptions& options, bool with_double_layer,
-                       SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density)
+                       SpmeGridCache* grid_cache, const Eigen::MatrixXd* single_layer_density,
+                       const DensityHalo& bring_density)
     : grids_(std::move(grids)),
       domain_(domain),
       grid_cache_(grid_cache),
@@ -120,6 +121,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   find_halo_extent(single_grid.get(), double_grid.get());
   halo_ = halo_with({});
   geometry_timer.stop();
+  if (single_density_ && bring_density) bring_density(halo_);
   // The single layer of a given density is applied once, as its corrections are built: they
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
   // of folding them into the plan's pair shares, which would be held through every cell's

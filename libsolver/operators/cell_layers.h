@@ -17,6 +17,7 @@
 // not own it holds as nodes only (positions, normals, weights).
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -54,6 +55,13 @@ struct CellLayersTimings {
 RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs, double tolerance, const PeriodicBox& box,
                                      long nodes);
 
+// Brings the rows a rank reads of a step's single-layer density that it does not hold: an
+// operator built for the density (single_layer_density below, CellLayersAtPoints) calls it with
+// its halo (cell positions in the layers' order, ascending) once it has found it, before it
+// reads the density; the owned cells' rows must be there already. Collective: every rank's
+// operator calls it at the same point. Empty: the density is whole on every rank.
+using DensityHalo = std::function<void(const std::vector<int>& halo)>;
+
 struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
@@ -80,10 +88,11 @@ class CellLayers {
   // single-layer Ewald plan freed after its one product: kept, they were a third of a step's
   // memory. single_layer(f) and single_layer_part(f) then return it, for that density only: the
   // same matrix, which is read only here (the caller keeps it while this is built; no copy of a
-  // vector of every node is held after).
+  // vector of every node is held after). `bring_density` is called with halo() before it is read.
   CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const CellGrids> grids,
              const LayerDomain& domain, const QuadratureOptions& options = {}, bool with_double_layer = true,
-             SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr);
+             SpmeGridCache* grid_cache = nullptr, const Eigen::MatrixXd* single_layer_density = nullptr,
+             const DensityHalo& bring_density = {});
   ~CellLayers();
 
   int num_cells() const { return num_cells_; }

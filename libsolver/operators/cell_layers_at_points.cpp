@@ -11,7 +11,7 @@
 namespace rbcflow {
 
 CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
-                                       const Eigen::MatrixXd* single_layer_density)
+                                       const Eigen::MatrixXd* single_layer_density, const DensityHalo& bring_density)
     : layers_(layers), points_(points) {
   if (single_layer_density) {
     if (single_layer_density->rows() != layers.nodes().size() || single_layer_density->cols() != 3)
@@ -51,6 +51,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
     single_plan_ = plan(EwaldKernel::stokeslet, xi_single, node_shares[0]);
     if (with_double) double_plan_ = plan(EwaldKernel::stresslet, xi_double, node_shares[1]);
   }
+  if (single_density_ && bring_density) bring_density(layers.halo_with(slabs_));
   near_.resize(nc);
   std::vector<Eigen::MatrixXd> near_single(nc);
 #pragma omp parallel for schedule(dynamic)

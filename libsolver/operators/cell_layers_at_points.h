@@ -20,8 +20,9 @@ class CellLayersAtPoints {
   // single_layer_density: as in CellLayers, the one single-layer density of the step (its
   // traction), whose single layer is computed here with its corrections and plan freed after use;
   // single_layer then takes that matrix only (the same object, read only here).
+  // `bring_density` is called with the layers' halo_with(slabs()) before it is read.
   CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
-                     const Eigen::MatrixXd* single_layer_density = nullptr);
+                     const Eigen::MatrixXd* single_layer_density = nullptr, const DensityHalo& bring_density = {});
   ~CellLayersAtPoints();
 
   int num_points() const { return static_cast<int>(points_.rows()); }

@@ -18,6 +18,7 @@
 #include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
+#include "libsolver/stepper/step_traction.h"
 
 namespace rbcflow {
 
@@ -48,21 +49,6 @@ void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& ow
     items.push_back(arrays(m));
   }
   share_blocks(ranks, items);
-}
-
-// Every cell's membrane traction on the N grid (np x 3) on every rank: the rank's own cells'
-// (owned_block) from their membranes, the others' from their owners.
-std::vector<Eigen::MatrixXd> shared_tractions(std::vector<MembraneState>& membranes, const OwnedRange& owned, int np,
-                                              const Communicator& ranks) {
-  std::vector<Eigen::MatrixXd> others(membranes.size());
-  std::vector<std::vector<std::span<double>>> items;
-  for (std::size_t c = 0; c < membranes.size(); ++c) {
-    Eigen::MatrixXd& f = owned.contains(static_cast<int>(c)) ? membranes[c].traction_grid
-                                                             : (others[c] = Eigen::MatrixXd::Zero(np, 3));
-    items.push_back({std::span<double>(f.data(), static_cast<std::size_t>(f.size()))});
-  }
-  if (ranks.size() > 1) share_blocks(ranks, items);
-  return others;
 }
 
 // Every cell's shape on every rank, from those of the ranks' own cells (owned_block).
@@ -186,41 +172,42 @@ FlowSolution CellStepper::solve() const {
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
   // The layer products take the cells in their owners' order (cell_owners.h; the cells' own on
-  // one rank): the node data of the products below are in that order, s.traction and s.velocity
-  // until the end (one copy of each; the operators refer to s.traction).
+  // one rank): the node data of the products below are in that order, s.velocity until the end.
   CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
-  const Eigen::MatrixXd* traction = &s.traction;
+  std::optional<StepTraction> step_traction;
+  const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
+  DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
     std::vector<SHCoeffs> shapes(nc);
     s.membrane.resize(nc);
-    s.traction.resize(nc * np, 3);
     ScopedTimer membrane_timer(timing.membrane);
-    // Each rank the membranes of its own cells (owned_block); only their tractions go to every
-    // rank, the rest of their states when the output needs them (share_membranes).
+    // Each rank the membranes of its own cells (owned_block); the operators bring the rows of
+    // their tractions they read (step_traction.h), the output the rest of their states
+    // (share_membranes).
     const OwnedRange owned = owned_block(nc, options_.domain.ranks);
     for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
+    Eigen::MatrixXd block(owned.size() * np, 3);
 #pragma omp parallel for schedule(dynamic)
-    for (int c = owned.begin; c < owned.end; ++c) s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
-    const std::vector<Eigen::MatrixXd> others = shared_tractions(s.membrane, owned, np, options_.domain.ranks);
-    for (int c = 0; c < nc; ++c)
-      s.traction.middleRows(c * np, np) = owned.contains(c) ? s.membrane[c].traction_grid : others[c];
-    for (int c = 0; c < nc; ++c) {
+    for (int c = owned.begin; c < owned.end; ++c) {
+      s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
+      auto rows = block.middleRows((c - owned.begin) * np, np);
+      rows = s.membrane[c].traction_grid;
       if (cells_[c].body_force.isZero()) continue;
       const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
-      s.traction.middleRows(c * np, np).rowwise() -= (cells_[c].body_force / area).transpose();
+      rows.rowwise() -= (cells_[c].body_force / area).transpose();
     }
     membrane_timer.stop();
     owners = cell_owners(shapes, *grids_, options_.domain, lambda != 1.0, grid_cache_.get());
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
-    if (!owners.in_cell_order()) {
-      s.traction = owners.to_owner_order(s.traction, np);
-      shapes = owners.to_owner_order(shapes);
-    }
+    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
+    step_traction.emplace(std::move(block), owners, np, options_.domain.ranks);
+    traction = &step_traction->density();
+    bring_traction = step_traction->bringer();
     // The traction is the step's only single-layer density: its single layer is computed as
     // the operator is built, and the single-layer tables freed (cell_layers.h).
     layers = std::make_unique<CellLayers>(shapes, grids_, domain, options_.quadrature, lambda != 1.0,
-                                          grid_cache_.get(), traction);
+                                          grid_cache_.get(), traction, bring_traction);
     s.owned_cells = layers->owned().size();
     timing.cell_geometry = layers->build_timings().geometry;
     timing.self_corrections = layers->build_timings().self;
@@ -231,7 +218,7 @@ FlowSolution CellStepper::solve() const {
   std::unique_ptr<CellLayersAtPoints> at_wall;
   if (wall_ && nc > 0) {
     ScopedTimer timer(timing.at_wall_build);
-    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes(), traction);
+    at_wall = std::make_unique<CellLayersAtPoints>(*layers, wall_->nodes(), traction, bring_traction);
     s.near_wall_points = at_wall->near_points();
   }
   double sweep_tolerance = 0;  // > 0: the start sweeps' looser tolerance (below)
@@ -384,7 +371,7 @@ FlowSolution CellStepper::solve() const {
     for (const Cell& c : cells_) shapes.push_back(c.shape);
     if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
     const CellsAtStep cells_now{layers.get(), traction, &s.velocity, &shapes,
-                              nc > 0 ? grids_->n_grid.get() : nullptr, lambda};
+                                nc > 0 ? grids_->n_grid.get() : nullptr, lambda, bring_traction};
     s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
   }
   if (layers) {
@@ -398,9 +385,10 @@ FlowSolution CellStepper::solve() const {
       if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
     s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
-  if (!owners.in_cell_order()) {
-    s.velocity = owners.to_cell_order(s.velocity, np);
-    s.traction = owners.to_cell_order(s.traction, np);
+  if (!owners.in_cell_order()) s.velocity = owners.to_cell_order(s.velocity, np);
+  if (step_traction) {
+    s.traction_rows_received = step_traction->rows_received();
+    s.traction = step_traction->release();
   }
   total_timer.stop();
   if (layers) layers->report_memory(s.memory);
@@ -429,8 +417,12 @@ FlowSolution CellStepper::solve() const {
 void CellStepper::share_membranes(FlowSolution& s) const {
   const int nc = static_cast<int>(cells_.size());
   if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_membranes: not this stepper's solution");
-  rbcflow::share_membranes(s.membrane, owned_block(nc, options_.domain.ranks), cells_, points_per_cell(),
-                           options_.domain.ranks);
+  const Communicator& ranks = options_.domain.ranks;
+  if (ranks.size() == 1 || nc == 0) return;
+  const OwnedRange mine = owned_block(nc, ranks);
+  rbcflow::share_membranes(s.membrane, mine, cells_, points_per_cell(), ranks);
+  const int np = points_per_cell();
+  s.traction = OwnedRows(nc, np, ranks).gather(s.traction.middleRows(mine.begin * np, mine.size() * np));
 }
 
 void CellStepper::enforce_volume(int c) {

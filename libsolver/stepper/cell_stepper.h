@@ -63,7 +63,10 @@ struct Cell {
 // What solve() found for the current state (X^n).
 struct FlowSolution {
   Eigen::MatrixXd velocity;   // U^n, stacked over cells (nodes x 3)
-  Eigen::MatrixXd traction;   // hydrodynamic traction f^n on the cells, stacked
+  // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
+  // the cells this rank's operators read (its block, its cells in the products and their halo)
+  // and zero elsewhere; CellStepper::share_membranes fills every row.
+  Eigen::MatrixXd traction;
   // Per cell. On several ranks solve() fills only the rank's own block of the cells
   // (owned_block) and leaves the others empty; CellStepper::share_membranes fills them all.
   std::vector<MembraneState> membrane;
@@ -77,6 +80,7 @@ struct FlowSolution {
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
   long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
+  long traction_rows_received = 0;  // node rows of the traction the step's operators brought it (step_traction.h)
   int owned_cells = 0, halo_cells = 0;  // this rank's cells in the step's products and their halo in all of them (CellLayers::halo_with)
   long wall_nodes_received = 0;  // wall nodes (12)'s solves brought this rank from the others (WallSolution's)
   StepTimings timings;        // where solve() spent its time
@@ -136,9 +140,9 @@ class CellStepper {
   FlowSolution solve() const;
   StepReport advance(const FlowSolution& s);
   StepReport step() { return advance(solve()); }
-  // Every cell's membrane state in `s` (this stepper's solve()) on every rank, for output: solve()
-  // computes each rank's own cells' and shares only their tractions. Collective: every rank
-  // calls it; on one rank it changes nothing.
+  // Every cell's membrane state and traction in `s` (this stepper's solve()) on every rank, for
+  // output: solve() computes each rank's own cells' and brings each rank only the tractions it
+  // reads. Collective: every rank calls it; on one rank it changes nothing.
   void share_membranes(FlowSolution& s) const;
 
   double time() const { return state_.time; }

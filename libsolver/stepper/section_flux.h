@@ -28,6 +28,7 @@ struct CellsAtStep {
   const std::vector<SHSurface>* shapes = nullptr;
   const SHTransform* grid = nullptr;
   double viscosity_ratio = 1.0;
+  DensityHalo bring_traction;  // the traction's rows the sections' operator reads (CellLayersAtPoints)
 };
 
 // One flux per branch, each measured through one of the branch's candidate sections (all

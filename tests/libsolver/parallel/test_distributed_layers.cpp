@@ -869,6 +869,78 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
 }
 
+// The step's traction on the ranks (step_traction.h): each rank computes its block's membranes,
+// and the step's operators (the layers, the layers at the wall) bring it only the traction rows
+// they read. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
+// strained (its membrane at rest at 0.95-0.97 of its size), lambda = 1, a mean velocity along
+// the tube: one step's solve on the ranks gives one process's velocity (to 1e-9: the sums in
+// another order, the same iterations), the traction's rows a rank holds are one process's bits
+// and the others zero, and where the grid is split some rank receives fewer rows than an
+// all-gather would bring; share_membranes then gives every rank every row.
+CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks) {
+  std::vector<Cell> cells;
+  int k = 0;
+  for (const SHCoeffs& x : edge_on_column(grids->order, 16, 2.5)) {
+    SHSurface rest = make_biconcave(grids->order);
+    rest.coeffs().values() *= 0.95 + 0.01 * (k++ % 3);
+    Cell c;
+    c.shape = SHSurface(x);
+    c.membrane = std::make_shared<const Membrane>(rest, grids,
+                                                  MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
+    cells.push_back(std::move(c));
+  }
+  TubeSpec spec;
+  spec.diameter = 4.2;
+  spec.box = Eigen::Vector3d(5.0, 5.0, 48.0);
+  spec.element_size = 0.6;
+  CellStepperOptions o;
+  o.dt = 1e-3;
+  o.domain = LayerDomain{PeriodicBox(spec.box), 1e-6};
+  o.domain.ranks = ranks;
+  o.mean_velocity = Eigen::Vector3d(0, 0, 1);
+  o.wall = std::make_shared<const WallElements>(tube(spec));
+  o.gmres_tolerance = 1e-10;
+  o.wall_solve.tolerance = 1e-10;
+  return CellStepper(std::move(cells), grids, o);
+}
+
+TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
+  const Communicator world = Communicator::world();
+  const auto grids = CellGrids::make(8, 16);
+  const CellStepper one = sixteen_strained_cells_in_a_tube(grids, {}), shared = sixteen_strained_cells_in_a_tube(grids, world);
+  FlowSolution a = one.solve(), b = shared.solve();
+  const int nc = 16, np = static_cast<int>(a.traction.rows()) / nc;
+  ASSERT_GT(a.traction.cwiseAbs().maxCoeff(), 0.1);  // strained membranes
+  EXPECT_EQ(b.gmres_cells, a.gmres_cells);
+  const double dv = relative(b.velocity, a.velocity);
+  int held = 0, differ = 0;
+  for (int c = 0; c < nc; ++c) {
+    const Eigen::MatrixXd rows = b.traction.middleRows(c * np, np);
+    if (rows.isZero(0.0)) continue;
+    ++held;
+    differ += rows != a.traction.middleRows(c * np, np);
+  }
+  const OwnedRange mine = owned_block(nc, world);
+  const long all_gathered = static_cast<long>(nc - mine.size()) * np;
+  std::printf("  rank %d: velocity %.1e from one process's; traction of %d cells held (%d differ), %ld rows received "
+              "(an all-gather: %ld)\n",
+              world.rank(), dv, held, differ, b.traction_rows_received, all_gathered);
+  EXPECT_LT(dv, 1e-9);
+  EXPECT_EQ(differ, 0);
+  EXPECT_GE(held, mine.size());
+  EXPECT_EQ(b.traction_rows_received, static_cast<long>(held - mine.size()) * np);
+  const long ranks_receiving_fewer = world.sum(static_cast<long>(b.traction_rows_received < all_gathered));
+  if (world.size() > 1) {
+    LayerDomain domain{PeriodicBox(Eigen::Vector3d(5.0, 5.0, 48.0)), 1e-6};
+    domain.ranks = world;
+    if (cell_layer_grid(domain, static_cast<long>(nc) * np, false, nullptr)->distributed()) {
+      EXPECT_GT(ranks_receiving_fewer, 0);
+    }
+  }
+  shared.share_membranes(b);
+  EXPECT_EQ(b.traction, a.traction);
+}
+
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells,
 // the pairs' deficits and the moved shapes shared; the shapes and the report are the same bits
 // on every rank and as on one rank. Four unit spheres at order 12 in a D = 3.5 tube (box
