@@ -31,15 +31,18 @@ std::vector<std::span<double>> arrays(MembraneState& m) {
           std::span<double>(&m.elastic_energy, 1)};
 }
 
-// Every cell's membrane state on every rank, from those of the ranks' own cells (owned_block;
-// the others sized here).
-void share_membranes(std::vector<MembraneState>& membranes, const OwnedRange& owned, const std::vector<Cell>& cells,
+// Every cell's membrane state on every rank, from those of the cells' owners in the step's
+// products (the others sized here). The owners' blocks of the cells in owner order have
+// owned_block's sizes (cell_owners.h), share_blocks' blocks.
+void share_membranes(std::vector<MembraneState>& membranes, const CellOwners& owners, const std::vector<Cell>& cells,
                      int np, const Communicator& ranks) {
   if (ranks.size() == 1) return;
+  const OwnedRange mine{owners.first[ranks.rank()], owners.first[ranks.rank() + 1]};
   std::vector<std::vector<std::span<double>>> items;
-  for (std::size_t c = 0; c < membranes.size(); ++c) {
+  for (int k = 0; k < static_cast<int>(owners.order.size()); ++k) {
+    const int c = owners.order[k];
     MembraneState& m = membranes[c];
-    if (!owned.contains(static_cast<int>(c))) {
+    if (!mine.contains(k)) {
       m.traction = SHCoeffs(cells[c].shape.coeffs().order(), 3);
       m.traction_grid = Eigen::MatrixXd::Zero(np, 3);
       m.dilatation = Eigen::VectorXd::Zero(np);
@@ -179,29 +182,31 @@ FlowSolution CellStepper::solve() const {
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
     std::vector<SHCoeffs> shapes(nc);
+    for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
+    owners = cell_owners(shapes, *grids_, options_.domain, lambda != 1.0, grid_cache_.get());
+    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
     s.membrane.resize(nc);
     ScopedTimer membrane_timer(timing.membrane);
-    // Each rank the membranes of its own cells (owned_block); the operators bring the rows of
-    // their tractions they read (step_traction.h), the output the rest of their states
-    // (share_membranes).
-    const OwnedRange owned = owned_block(nc, options_.domain.ranks);
-    for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
-    Eigen::MatrixXd block(owned.size() * np, 3);
+    // Each rank the membranes of the cells it owns in the products; the operators bring the
+    // rows of the others' tractions they read (step_traction.h), the output the rest of their
+    // states (share_membranes).
+    const int r = options_.domain.ranks.rank();
+    const int first = owners.first[r], end = owners.first[r + 1];
+    Eigen::MatrixXd owned(static_cast<Eigen::Index>(end - first) * np, 3);
 #pragma omp parallel for schedule(dynamic)
-    for (int c = owned.begin; c < owned.end; ++c) {
-      s.membrane[c] = cells_[c].membrane->compute(shapes[c]);
-      auto rows = block.middleRows((c - owned.begin) * np, np);
+    for (int k = first; k < end; ++k) {
+      const int c = owners.order[k];
+      s.membrane[c] = cells_[c].membrane->compute(shapes[k]);
+      auto rows = owned.middleRows(static_cast<Eigen::Index>(k - first) * np, np);
       rows = s.membrane[c].traction_grid;
       if (cells_[c].body_force.isZero()) continue;
       const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
       rows.rowwise() -= (cells_[c].body_force / area).transpose();
     }
     membrane_timer.stop();
-    owners = cell_owners(shapes, *grids_, options_.domain, lambda != 1.0, grid_cache_.get());
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
-    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
-    step_traction.emplace(std::move(block), owners, np, options_.domain.ranks);
+    step_traction.emplace(std::move(owned), owners, np, options_.domain.ranks);
     traction = &step_traction->density();
     bring_traction = step_traction->bringer();
     // The traction is the step's only single-layer density: its single layer is computed as
@@ -390,6 +395,7 @@ FlowSolution CellStepper::solve() const {
     s.traction_rows_received = step_traction->rows_received();
     s.traction = step_traction->release();
   }
+  s.owners = std::move(owners);
   total_timer.stop();
   if (layers) layers->report_memory(s.memory);
   if (at_wall) at_wall->report_memory(s.memory, "at wall:");
@@ -419,10 +425,14 @@ void CellStepper::share_membranes(FlowSolution& s) const {
   if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_membranes: not this stepper's solution");
   const Communicator& ranks = options_.domain.ranks;
   if (ranks.size() == 1 || nc == 0) return;
-  const OwnedRange mine = owned_block(nc, ranks);
-  rbcflow::share_membranes(s.membrane, mine, cells_, points_per_cell(), ranks);
-  const int np = points_per_cell();
-  s.traction = OwnedRows(nc, np, ranks).gather(s.traction.middleRows(mine.begin * np, mine.size() * np));
+  const CellOwners& owners = s.owners;
+  rbcflow::share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
+  const int np = points_per_cell(), first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
+  const Eigen::MatrixXd by_owners = owners.to_owner_order(s.traction, np);
+  s.traction = owners.to_cell_order(
+      OwnedRows(owners.first, np, ranks).gather(by_owners.middleRows(static_cast<Eigen::Index>(first) * np,
+                                                                     static_cast<Eigen::Index>(end - first) * np)),
+      np);
 }
 
 void CellStepper::enforce_volume(int c) {

@@ -20,6 +20,7 @@
 
 #include "libsolver/membrane/membrane_force.h"
 #include "libsolver/operators/cell_layers.h"
+#include "libsolver/operators/cell_owners.h"
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/section_flux.h"
@@ -64,12 +65,13 @@ struct Cell {
 struct FlowSolution {
   Eigen::MatrixXd velocity;   // U^n, stacked over cells (nodes x 3)
   // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
-  // the cells this rank's operators read (its block, its cells in the products and their halo)
-  // and zero elsewhere; CellStepper::share_membranes fills every row.
+  // the cells this rank's operators read (its own in the products and their halo) and zero
+  // elsewhere; CellStepper::share_membranes fills every row.
   Eigen::MatrixXd traction;
-  // Per cell. On several ranks solve() fills only the rank's own block of the cells
-  // (owned_block) and leaves the others empty; CellStepper::share_membranes fills them all.
+  // Per cell. On several ranks solve() fills only the rank's own cells in the products (owners)
+  // and leaves the others empty; CellStepper::share_membranes fills them all.
   std::vector<MembraneState> membrane;
+  CellOwners owners;          // the cells' owners in the step's products (cell_owners.h)
   PointField wall_force;      // F^n at the wall nodes (empty without a wall)
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();      // <u> used
   Eigen::Vector3d pressure_gradient = Eigen::Vector3d::Zero();  // (8); zero without a wall
