@@ -403,8 +403,8 @@ FlowSolution CellStepper::solve() const {
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
   // The cells' state held on this rank (docs/scaling.md): every cell's shapes, traction on the
-  // N grid and this step's velocity, and its block's membrane states and last three velocities
-  // (every cell's on one rank).
+  // N grid (filled at its owned and halo cells) and this step's velocity, the membrane states of
+  // its cells in the products and its block's last three velocities (every cell's on one rank).
   std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
