@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "libsolver/parallel/communicator.h"
-#include "libsolver/parallel/ownership.h"
 #include "step_cases.h"
 
 using namespace rbcflow;
@@ -169,10 +168,9 @@ int main(int argc, char** argv) {
                    ranks.rank(), last_rows_received, last_iterations, last_nodes);
       std::fprintf(stderr, "rank %d: %d cells owned in the last step's products, a halo of %d of the other %d\n", ranks.rank(),
                    last_owned, last_halo, static_cast<int>(stepper->cells().size()) - last_owned);
+      const long n_cells = std::max<long>(1, static_cast<long>(stepper->cells().size()));
       std::fprintf(stderr, "rank %d: %ld node rows of the traction received in the last step (all-gathered: %ld)\n",
-                   ranks.rank(), last_traction_received,
-                   last_nodes - static_cast<long>(owned_block(static_cast<int>(stepper->cells().size()), ranks).size()) *
-                                    (last_nodes / std::max<long>(1, static_cast<long>(stepper->cells().size()))));
+                   ranks.rank(), last_traction_received, (n_cells - last_owned) * (last_nodes / n_cells));
       if (stepper->wall())
         std::fprintf(stderr, "rank %d: %ld wall nodes received in the last step's wall solves, %d GMRES iterations, %d wall nodes\n",
                      ranks.rank(), last_wall_received, last_wall_iterations, stepper->wall()->elements().num_nodes());
