@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
     double best_step = 1e300, best_cpu = 1e300;
     KernelShare best_kernel{1e300, 1e300};
     MemoryReport memory;  // of the last step's operators
-    long last_rows_received = 0, last_nodes = 0, last_wall_received = 0, last_traction_received = 0;
+    long last_rows_received = 0, last_nodes = 0, last_wall_received = 0, last_traction_received = 0,
+         last_velocity_received = 0;
     int last_iterations = 0, last_wall_iterations = 0, last_owned = 0, last_halo = 0;
     StepTimings best;
     for (const Column& c : kColumns) best.*c.field = 1e300;
@@ -140,10 +141,11 @@ int main(int argc, char** argv) {
       memory = s.memory;
       last_rows_received = s.cell_rows_received;
       last_traction_received = s.traction_rows_received;
+      last_velocity_received = s.velocity_rows_received;
       last_wall_received = s.wall_nodes_received;
       last_wall_iterations = s.gmres_wall;
       last_iterations = s.gmres_cells;
-      last_nodes = s.velocity.rows();
+      last_nodes = s.traction.rows();
       last_owned = s.owned_cells;
       last_halo = s.halo_cells;
       std::fflush(stdout);
@@ -171,6 +173,8 @@ int main(int argc, char** argv) {
       const long n_cells = std::max<long>(1, static_cast<long>(stepper->cells().size()));
       std::fprintf(stderr, "rank %d: %ld node rows of the traction received in the last step (all-gathered: %ld)\n",
                    ranks.rank(), last_traction_received, (n_cells - last_owned) * (last_nodes / n_cells));
+      std::fprintf(stderr, "rank %d: %ld node rows of the velocity received in the last step (all-gathered: %ld)\n",
+                   ranks.rank(), last_velocity_received, (n_cells - last_owned) * (last_nodes / n_cells));
       if (stepper->wall())
         std::fprintf(stderr, "rank %d: %ld wall nodes received in the last step's wall solves, %d GMRES iterations, %d wall nodes\n",
                      ranks.rank(), last_wall_received, last_wall_iterations, stepper->wall()->elements().num_nodes());

@@ -277,7 +277,7 @@ void Run::step() {
     const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
     const bool frame_now = n % c.output.every == 0 && !resumed_here;
     const bool render_now = c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here;
-    if (frame_now || render_now) stepper.share_membranes(s);  // every rank: the frames draw every cell's
+    if (frame_now || render_now) stepper.share_for_output(s);  // every rank: the frames draw every cell's
     if (frame_now) r.frame(stepper, s);
     if (r.output && render_now) r.output->render(stepper, s);
     const StepReport report = stepper.advance(s);
@@ -312,7 +312,7 @@ void Run::finish() {
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
       FlowSolution s = stepper.solve();  // on every rank: its products are shared
-      stepper.share_membranes(s);
+      stepper.share_for_output(s);
       r.frame(stepper, s);
       if (r.output && c.output.render) r.output->render(stepper, s);
     }

@@ -18,7 +18,7 @@
 #include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
-#include "libsolver/stepper/step_traction.h"
+#include "libsolver/stepper/halo_density.h"
 
 namespace rbcflow {
 
@@ -175,9 +175,10 @@ FlowSolution CellStepper::solve() const {
   // Hydrodynamic traction: the membrane's (eq. 23) minus the body-force density.
   std::unique_ptr<CellLayers> layers;
   // The layer products take the cells in their owners' order (cell_owners.h; the cells' own on
-  // one rank): the node data of the products below are in that order, s.velocity until the end.
+  // one rank): the node data of the products below are in that order; s.velocity holds this
+  // rank's owned cells' rows until the end.
   CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
-  std::optional<StepTraction> step_traction;
+  std::optional<HaloDensity> step_traction;
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
@@ -188,8 +189,8 @@ FlowSolution CellStepper::solve() const {
     s.membrane.resize(nc);
     ScopedTimer membrane_timer(timing.membrane);
     // Each rank the membranes of the cells it owns in the products; the operators bring the
-    // rows of the others' tractions they read (step_traction.h), the output the rest of their
-    // states (share_membranes).
+    // rows of the others' tractions they read (halo_density.h), the output the rest of their
+    // states (share_for_output).
     const int r = options_.domain.ranks.rank();
     const int first = owners.first[r], end = owners.first[r + 1];
     Eigen::MatrixXd owned(static_cast<Eigen::Index>(end - first) * np, 3);
@@ -349,20 +350,28 @@ FlowSolution CellStepper::solve() const {
     // manner of Eisenstat & Walker's forcing terms), the last at the solves' own tolerances.
     // Each U is a combination of the solved velocities, so the mixing also combines their
     // images under (10)'s operator, which GMRES returns: a sweep's solve starts from U without
-    // a product.
+    // a product. The sweeps (the first step only) hold every node's rows of U, as (12) reads
+    // them at the wall.
     if (start_sweeps) {
+      const OwnedRows by_owners(owners.first, np, options_.domain.ranks);
+      auto every_row = [&](const Eigen::MatrixXd& mine) {
+        return options_.domain.ranks.size() == 1 ? mine : by_owners.gather(mine);
+      };
       AndersonMixing mixing(kStartSweepDepth);
       Eigen::MatrixXd U = Eigen::MatrixXd::Zero(nc * np, 3);  // the U of the first solve's (12)
+      Eigen::MatrixXd u = every_row(s.velocity);
       const double settled = std::max(kStartSweepTolerance, 10 * options_.gmres_tolerance);
       const double finest = std::min(options_.gmres_tolerance, options_.wall_solve.tolerance);
       for (int sweep = 0; sweep < kMaxStartSweeps; ++sweep) {
-        sweep_tolerance = kStartSweepForcing * (s.velocity - U).norm() / s.velocity.norm();
+        sweep_tolerance = kStartSweepForcing * (u - U).norm() / u.norm();
         if (sweep_tolerance <= finest) sweep_tolerance = 0;
-        U = mixing.next(U, s.velocity, image, image);
+        image = every_row(image);
+        U = mixing.next(U, u, image, image);
         solve_wall(U, s.wall_force);
         solve_cells(U, &image);
+        u = every_row(s.velocity);
         s.start_sweeps = sweep + 1;
-        if ((s.velocity - U).norm() <= settled * U.norm() && sweep_tolerance == 0) break;
+        if ((u - U).norm() <= settled * U.norm() && sweep_tolerance == 0) break;
       }
       sweep_tolerance = 0;
     }
@@ -371,12 +380,21 @@ FlowSolution CellStepper::solve() const {
     if (what.find(" at step ") != std::string::npos) throw;
     throw std::runtime_error(what + at_step(step));
   }
+  // U^n held by its owners in the products: the flux sections' double layer brings its halo's
+  // rows, and each rank then brings its block of the cells' (owned_block, the velocities'
+  // history), not every cell's.
+  std::optional<HaloDensity> velocity;
+  if (nc > 0) velocity.emplace(std::move(s.velocity), owners, np, options_.domain.ranks);
   if (section_meter_) {
     std::vector<SHSurface> shapes;
     for (const Cell& c : cells_) shapes.push_back(c.shape);
     if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
-    const CellsAtStep cells_now{layers.get(), traction, &s.velocity, &shapes,
-                                nc > 0 ? grids_->n_grid.get() : nullptr, lambda, bring_traction};
+    DensityHalo bring_densities = [&](const std::vector<int>& halo) {
+      bring_traction(halo);
+      if (lambda != 1.0) velocity->bring(halo);  // the double layer's density
+    };
+    const CellsAtStep cells_now{layers.get(), traction, velocity ? &velocity->density() : nullptr, &shapes,
+                                nc > 0 ? grids_->n_grid.get() : nullptr, lambda, bring_densities};
     s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
   }
   if (layers) {
@@ -390,7 +408,10 @@ FlowSolution CellStepper::solve() const {
       if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
     s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
-  if (!owners.in_cell_order()) s.velocity = owners.to_cell_order(s.velocity, np);
+  if (velocity) {
+    s.velocity = velocity->cells_rows(owned_block(nc, options_.domain.ranks));
+    s.velocity_rows_received = velocity->rows_received();
+  }
   if (step_traction) {
     s.traction_rows_received = step_traction->rows_received();
     s.traction = step_traction->release();
@@ -420,14 +441,18 @@ FlowSolution CellStepper::solve() const {
   return s;
 }
 
-void CellStepper::share_membranes(FlowSolution& s) const {
+void CellStepper::share_for_output(FlowSolution& s) const {
   const int nc = static_cast<int>(cells_.size());
-  if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_membranes: not this stepper's solution");
+  if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_for_output: not this stepper's solution");
   const Communicator& ranks = options_.domain.ranks;
   if (ranks.size() == 1 || nc == 0) return;
   const CellOwners& owners = s.owners;
-  rbcflow::share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
+  share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
   const int np = points_per_cell(), first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
+  // Every rank's block of the cells' rows, unless shared already (a rank whose block is every
+  // cell cannot tell by itself).
+  const bool shared = ranks.min(s.velocity.rows() == static_cast<Eigen::Index>(nc) * np ? 1 : 0) == 1;
+  if (!shared) s.velocity = OwnedRows(nc, np, ranks).gather(block_velocity(s));
   const Eigen::MatrixXd by_owners = owners.to_owner_order(s.traction, np);
   s.traction = owners.to_cell_order(
       OwnedRows(owners.first, np, ranks).gather(by_owners.middleRows(static_cast<Eigen::Index>(first) * np,
@@ -464,8 +489,9 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
                                at_step(state_.steps + 1));
   };
   int first_invalid = nc;
+  const auto velocity = block_velocity(s);
   for (int c = mine.begin; c < mine.end; ++c) {
-    const SHCoeffs rate = tn.analyze(s.velocity.middleRows(c * np, np));
+    const SHCoeffs rate = tn.analyze(velocity.middleRows((c - mine.begin) * np, np));
     Eigen::MatrixXd& x = cells_[c].shape.coeffs().values();
     if (ab2) {
       const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows((c - mine.begin) * np, np));
@@ -522,7 +548,8 @@ double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vecto
   const int a = options_.tube->axis;
   const double radius = options_.tube->radius;
   const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
-  return cells_volume_flux(shapes, s.velocity, *grids_->n_grid, a, options_.domain.ranks) / (options_.domain.box->lengths()[a] * tube_flux);
+  return cells_volume_flux(shapes, block_velocity(s), *grids_->n_grid, a, options_.domain.ranks) /
+         (options_.domain.box->lengths()[a] * tube_flux);
 }
 
 StepReport CellStepper::advance(const FlowSolution& s) {
@@ -559,9 +586,8 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   state_.oldest_velocity = std::move(state_.older_velocity);
   state_.older_velocity = std::move(state_.previous_velocity);
   state_.older_wall_force = std::move(state_.previous_wall_force);
-  if (!cells_.empty()) {  // this rank's block of the cells' rows
-    const OwnedRange mine = owned_block(static_cast<int>(cells_.size()), options_.domain.ranks);
-    state_.previous_velocity = s.velocity.middleRows(mine.begin * points_per_cell(), mine.size() * points_per_cell());
+  if (!cells_.empty()) {
+    state_.previous_velocity = block_velocity(s);
   } else {
     state_.previous_velocity = s.velocity;
   }
@@ -578,6 +604,15 @@ int CellStepper::velocities_held() const {
     ++held;
   }
   return held;
+}
+
+Eigen::Block<const Eigen::MatrixXd> CellStepper::block_velocity(const FlowSolution& s) const {
+  const int nc = static_cast<int>(cells_.size());
+  const Eigen::Index np = points_per_cell();
+  const OwnedRange mine = owned_block(nc, options_.domain.ranks);
+  const bool every_cell = s.velocity.rows() == nc * np;  // after share_for_output (or on one rank)
+  if (!every_cell && s.velocity.rows() != mine.size() * np) throw std::invalid_argument("advance: not this stepper's solution");
+  return s.velocity.middleRows(every_cell ? mine.begin * np : 0, mine.size() * np);
 }
 
 Eigen::MatrixXd CellStepper::extrapolated_velocity() const {

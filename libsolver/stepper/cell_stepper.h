@@ -63,13 +63,16 @@ struct Cell {
 
 // What solve() found for the current state (X^n).
 struct FlowSolution {
-  Eigen::MatrixXd velocity;   // U^n, stacked over cells (nodes x 3)
+  // U^n, stacked over cells (nodes x 3). On several ranks solve() leaves this rank's block of
+  // the cells' rows (owned_block, those advance() moves); CellStepper::share_for_output every
+  // cell's.
+  Eigen::MatrixXd velocity;
   // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
   // the cells this rank's operators read (its own in the products and their halo) and zero
-  // elsewhere; CellStepper::share_membranes fills every row.
+  // elsewhere; CellStepper::share_for_output fills every row.
   Eigen::MatrixXd traction;
   // Per cell. On several ranks solve() fills only the rank's own cells in the products (owners)
-  // and leaves the others empty; CellStepper::share_membranes fills them all.
+  // and leaves the others empty; CellStepper::share_for_output fills them all.
   std::vector<MembraneState> membrane;
   CellOwners owners;          // the cells' owners in the step's products (cell_owners.h)
   PointField wall_force;      // F^n at the wall nodes (empty without a wall)
@@ -82,7 +85,8 @@ struct FlowSolution {
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
   long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
-  long traction_rows_received = 0;  // node rows of the traction the step's operators brought it (step_traction.h)
+  long traction_rows_received = 0;  // node rows of the traction the step's operators brought it (halo_density.h)
+  long velocity_rows_received = 0;  // node rows of U^n brought it: the flux sections' halo, its block of the cells
   int owned_cells = 0, halo_cells = 0;  // this rank's cells in the step's products and their halo in all of them (CellLayers::halo_with)
   long wall_nodes_received = 0;  // wall nodes (12)'s solves brought this rank from the others (WallSolution's)
   StepTimings timings;        // where solve() spent its time
@@ -142,10 +146,11 @@ class CellStepper {
   FlowSolution solve() const;
   StepReport advance(const FlowSolution& s);
   StepReport step() { return advance(solve()); }
-  // Every cell's membrane state and traction in `s` (this stepper's solve()) on every rank, for
-  // output: solve() computes each rank's own cells' and brings each rank only the tractions it
-  // reads. Collective: every rank calls it; on one rank it changes nothing.
-  void share_membranes(FlowSolution& s) const;
+  // Every cell's membrane state, traction and velocity in `s` (this stepper's solve()) on every
+  // rank, for output: solve() computes each rank's own cells' and brings each rank only the
+  // tractions it reads and its block's velocities. Collective: every rank calls it; on one rank
+  // it changes nothing.
+  void share_for_output(FlowSolution& s) const;
 
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }
@@ -184,6 +189,9 @@ class CellStepper {
   int velocities_held() const;
   Eigen::MatrixXd extrapolated_velocity() const;
   void enforce_volume(int c);
+  // The rows of this rank's block of the cells (owned_block) of U^n in `s`: all of s.velocity as
+  // solve() leaves it, or its block's after share_for_output.
+  Eigen::Block<const Eigen::MatrixXd> block_velocity(const FlowSolution& s) const;
   // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
   // cells' current shapes.
   double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const;

@@ -36,7 +36,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
   }
   VelocitySolve s;
   if (lam == 1.0) {
-    s.velocity = rows.gather(b_mine);
+    s.velocity = b_mine;
     s.gmres.converged = true;
     s.rows_received = rows.rows_received();
     if (image) *image = s.velocity;
@@ -57,20 +57,20 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     const Eigen::MatrixXd Au = u - c * Ku;
     return Eigen::Map<const Eigen::VectorXd>(Au.data(), Au.size());
   };
-  auto mine = [&](const Eigen::MatrixXd& all) {
-    const Eigen::MatrixXd m = rows.mine(all);
+  auto mine = [&](const Eigen::MatrixXd& all) {  // every node's rows or this rank's already
+    const Eigen::MatrixXd m = all.rows() == total ? rows.mine(all) : all;
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(m.data(), m.size()));
   };
-  auto gathered = [&](const Eigen::VectorXd& v) { return rows.gather(Eigen::Map<const Eigen::MatrixXd>(v.data(), n, 3)); };
+  auto as_rows = [&](const Eigen::VectorXd& v) { return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(v.data(), n, 3)); };
   const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(b_mine.data(), b_mine.size());
-  const bool guessed = initial_guess.rows() == total && initial_guess.cols() == 3;
+  const bool guessed = (initial_guess.rows() == total || initial_guess.rows() == n) && initial_guess.cols() == 3;
   Eigen::VectorXd x = guessed ? mine(initial_guess) : b;
   Eigen::VectorXd Ax;
-  if (image && guessed && image->rows() == total && image->cols() == 3) Ax = mine(*image);
+  if (image && guessed && image->rows() == initial_guess.rows() && image->cols() == 3) Ax = mine(*image);
   s.gmres = gmres(A, b, x, tolerance, max_iterations, 60, image ? &Ax : nullptr, SplitInnerProducts{layers.domain().ranks});
   s.rows_received = rows.rows_received();
-  s.velocity = gathered(x);
-  if (image) *image = gathered(Ax);
+  s.velocity = as_rows(x);
+  if (image) *image = as_rows(Ax);
   return s;
 }
 

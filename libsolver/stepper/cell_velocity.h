@@ -12,16 +12,19 @@
 namespace rbcflow {
 
 struct VelocitySolve {
-  Eigen::MatrixXd velocity;  // stacked nodes x 3
+  // This rank's cells' rows (the layers' owned(), in their order), stacked nodes x 3: every
+  // node on one rank. Not gathered: the caller brings the rows it needs (halo_density.h).
+  Eigen::MatrixXd velocity;
   GmresReport gmres;         // iterations 0 for lambda = 1
   long rows_received = 0;    // node rows this rank received from the others in the solve's products
 };
 
 // mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3,
-// the same on every rank. `image` (optional, stacked nodes x 3): on entry, when it has the
-// velocity's shape, the left-hand side of (6) for `initial_guess`, which saves the solve's first
-// product; on return, the left-hand side for the returned velocity (preconditioned_gmres.h: no
-// product). `background_part` (optional, stacked nodes x 3): this rank's part of a further
+// the same on every rank. `initial_guess`: every node's rows or this rank's cells' (as the
+// returned velocity). `image` (optional): on entry, when it has the guess's shape, the
+// left-hand side of (6) for `initial_guess`, which saves the solve's first product; on return,
+// the left-hand side for the returned velocity, this rank's cells' rows
+// (preconditioned_gmres.h: no product). `background_part` (optional, stacked nodes x 3): this rank's part of a further
 // background that is the sum of the ranks' parts (the wall's velocity at the cells,
 // wall/wall_operator.h's TargetRows); on several ranks each receives only its rows of the
 // right-hand side, summed from the ranks' parts of it (parallel/owned_rows.h), never the whole.

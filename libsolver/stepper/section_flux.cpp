@@ -129,7 +129,7 @@ std::vector<double> SectionFluxMeter::fluxes(const Eigen::Vector3d& mean_velocit
   if (with_cells) {
     constexpr double kPi = std::numbers::pi;
     const double lambda = cells->viscosity_ratio;
-    const CellLayersAtPoints at(*cells->layers, points, cells->traction, cells->bring_traction);
+    const CellLayersAtPoints at(*cells->layers, points, cells->traction, cells->bring_densities);
     slabs_ = at.slabs();
     u -= at.single_layer(*cells->traction) / (8 * kPi);
     if (lambda != 1.0) u += (1 - lambda) / (8 * kPi) * at.double_layer(*cells->velocity);

@@ -28,7 +28,9 @@ struct CellsAtStep {
   const std::vector<SHSurface>* shapes = nullptr;
   const SHTransform* grid = nullptr;
   double viscosity_ratio = 1.0;
-  DensityHalo bring_traction;  // the traction's rows the sections' operator reads (CellLayersAtPoints)
+  // Brings the rows of the traction and the velocity the sections' operator reads
+  // (CellLayersAtPoints's halo; halo_density.h).
+  DensityHalo bring_densities;
 };
 
 // One flux per branch, each measured through one of the branch's candidate sections (all

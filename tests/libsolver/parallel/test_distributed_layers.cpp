@@ -15,6 +15,7 @@
 
 #include "geometry/surface/reference_shapes.h"
 #include "geometry/vessel/vessel.h"
+#include "geometry/vessel/vessel_branch.h"
 #include "libsolver/wall/wall_solver.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/cell_layers_at_points.h"
@@ -50,6 +51,12 @@ Eigen::MatrixXd smooth_density(const PointField& x) {
 double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / b.norm(); }
 
 // The largest difference of `m` between this rank and rank 0 (0 on one rank).
+// Every rank's rows of a velocity solve_cell_velocity left on the ranks (each its cells' rows in
+// the layers' order), stacked.
+Eigen::MatrixXd every_row(const CellLayers& layers, const Eigen::MatrixXd& mine) {
+  return OwnedRows(layers.owned_first(), layers.nodes_per_cell(), layers.domain().ranks).gather(mine);
+}
+
 double spread_over_ranks(const Communicator& ranks, const Eigen::MatrixXd& m) {
   Eigen::MatrixXd root = ranks.root() ? m : Eigen::MatrixXd::Zero(m.rows(), m.cols()).eval();
   ranks.sum(root);  // rank 0's values on every rank
@@ -351,8 +358,9 @@ TEST(OwnedSegments, ReadOnlyTheNodesReadAndSumOnlyTheNodesThatAreNotZero) {
 }
 
 // The velocity of (10) solved with GMRES's vectors split by rows over the ranks (each rank its
-// cells' rows, inner products summed over the ranks): the same iterations as one rank, and the
-// same velocity to the rounding the products carry into the iterates, on every rank alike.
+// cells' rows, inner products summed over the ranks, the velocity left there): the same
+// iterations as one rank, and the same velocity to the rounding the products carry into the
+// iterates.
 TEST(DistributedLayers, CellVelocitySolveOnTheRanksEqualsOneRank) {
   const Communicator world = Communicator::world();
   const int N = 8;
@@ -373,14 +381,15 @@ TEST(DistributedLayers, CellVelocitySolveOnTheRanksEqualsOneRank) {
     ASSERT_TRUE(a.gmres.converged);
     ASSERT_GT(a.gmres.iterations, 3);
     EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
-    const double dv = relative(b.velocity, a.velocity), di = relative(image_ranks, image_one);
+    EXPECT_EQ(b.velocity.rows(), distributed.owned().size() * distributed.nodes_per_cell());
+    EXPECT_EQ(image_ranks.rows(), b.velocity.rows());
+    const double dv = relative(every_row(distributed, b.velocity), a.velocity),
+                 di = relative(every_row(distributed, image_ranks), image_one);
     std::printf("  cell velocity, %d cell(s): %d iterations, velocity %.1e, image %.1e from one rank's\n", count,
                 a.gmres.iterations, dv, di);
     // The products differ by ~1e-16 (above); GMRES at 1e-10 carries that, not more.
     EXPECT_LT(dv, 1e-13);
     EXPECT_LT(di, 1e-13);
-    EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
-    EXPECT_EQ(spread_over_ranks(world, image_ranks), 0.0);
     // Restarted from its own solution and image: no product, the same velocity.
     Eigen::MatrixXd image = image_ranks;
     const VelocitySolve again = solve_cell_velocity(distributed, f, 5.0, background, 1e-10, 100, b.velocity, &image);
@@ -416,11 +425,10 @@ TEST(DistributedLayers, RightHandSideFromTheRanksPartsEqualsOneRank) {
     const VelocitySolve b = solve_cell_velocity(distributed, f, lambda, mean, 1e-10, 100, {}, nullptr, &part);
     ASSERT_TRUE(a.gmres.converged);
     EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
-    const double dv = relative(b.velocity, a.velocity);
+    const double dv = relative(every_row(distributed, b.velocity), a.velocity);
     std::printf("  lambda %.0f: %d iterations, velocity %.1e from one rank's, %ld rows received\n", lambda,
                 a.gmres.iterations, dv, b.rows_received);
     EXPECT_LT(dv, 1e-13);  // as CellVelocitySolveOnTheRanksEqualsOneRank
-    EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
     if (P == 1) {
       EXPECT_EQ(b.velocity, a.velocity);  // the same sums in the same order
     }
@@ -631,7 +639,7 @@ TEST(DistributedLayers, CellsOwnedAlongTheSlabsSolveAsOneRank) {
                                               owners.to_owner_order(background, np), 1e-10, 100, {});
   ASSERT_TRUE(a.gmres.converged);
   EXPECT_EQ(b.gmres.iterations, a.gmres.iterations);
-  const double dv = relative(owners.to_cell_order(b.velocity, np), a.velocity);
+  const double dv = relative(owners.to_cell_order(every_row(distributed, b.velocity), np), a.velocity);
   const long total = 3L * np * (b.gmres.iterations + 1);  // the rows an all-gather and a whole sum would bring
   std::printf("  cells owned along the slabs (first cells %d..%d here): %d iterations, velocity %.1e from one rank's, "
               "%ld node rows received (%.2f of all rows, twice a product)\n",
@@ -639,7 +647,6 @@ TEST(DistributedLayers, CellsOwnedAlongTheSlabsSolveAsOneRank) {
               static_cast<double>(b.rows_received) / (2 * total));
   EXPECT_LE(b.rows_received, 2 * total);
   EXPECT_LT(dv, 1e-13);  // as CellVelocitySolveOnTheRanksEqualsOneRank
-  EXPECT_EQ(spread_over_ranks(world, b.velocity), 0.0);
   shared.owned_first = {0, 3};  // not one entry a rank and one more (on 2 or 3 ranks)
   if (world.size() > 1) {
     EXPECT_THROW(CellLayers(cells, grids, shared), std::invalid_argument);
@@ -830,8 +837,8 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
 
 // The membranes on the ranks (cell_stepper.h): each rank computes the membranes of its cells in
 // the step's products (here in free space its block of the cells) and shares only their tractions, which are then the same bits on every rank and as on
-// one rank; the largest area strain is the ranks' largest; share_membranes gives every rank
-// every cell's state, the same bits as one rank's. From the state after one step with cell 2's
+// one rank; the largest area strain is the ranks' largest; share_for_output gives every rank
+// every cell's state, the same bits as one rank's, and every cell's velocity. From the state after one step with cell 2's
 // velocity ten times the solution's, so that the last rank's cell is strained most.
 TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   const Communicator world = Communicator::world();
@@ -855,7 +862,8 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   std::printf("  rank %d: the cells' largest area strains %.3e %.3e %.3e\n", world.rank(), strain(0), strain(1), strain(2));
   EXPECT_GT(strain(2), 2 * std::max(strain(0), strain(1)));
   const FlowSolution unshared = b;
-  shared.share_membranes(b);
+  shared.share_for_output(b);
+  EXPECT_LT(relative(b.velocity, a.velocity), 1e-13);  // free space, lambda = 1: the right-hand side's sums
   for (int c = 0; c < 3; ++c) {
     const MembraneState &x = a.membrane[c], &y = b.membrane[c];
     EXPECT_EQ(y.traction.values(), x.traction.values()) << "cell " << c;
@@ -869,15 +877,18 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
 }
 
-// The step's traction on the ranks (step_traction.h): each rank computes its block's membranes,
+// The step's traction on the ranks (halo_density.h): each rank computes its block's membranes,
 // and the step's operators (the layers, the layers at the wall) bring it only the traction rows
-// they read. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
+// they read; of the velocity it receives only its block of the cells' rows that other ranks
+// own. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
 // strained (its membrane at rest at 0.95-0.97 of its size), lambda = 1, a mean velocity along
 // the tube: one step's solve on the ranks gives one process's velocity (to 1e-9: the sums in
 // another order, the same iterations), the traction's rows a rank holds are one process's bits
 // and the others zero, and where the grid is split some rank receives fewer rows than an
-// all-gather would bring; share_membranes then gives every rank every row.
-CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks) {
+// all-gather would bring; share_for_output then gives every rank every row.
+CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks,
+                                             double viscosity_ratio = 1.0,
+                                             std::vector<std::vector<SectionQuadrature>> flux_sections = {}) {
   std::vector<Cell> cells;
   int k = 0;
   for (const SHCoeffs& x : edge_on_column(grids->order, 16, 2.5)) {
@@ -901,6 +912,8 @@ CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGri
   o.wall = std::make_shared<const WallElements>(tube(spec));
   o.gmres_tolerance = 1e-10;
   o.wall_solve.tolerance = 1e-10;
+  o.viscosity_ratio = viscosity_ratio;
+  o.flux_sections = std::move(flux_sections);
   return CellStepper(std::move(cells), grids, o);
 }
 
@@ -912,7 +925,9 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   const int nc = 16, np = static_cast<int>(a.traction.rows()) / nc;
   ASSERT_GT(a.traction.cwiseAbs().maxCoeff(), 0.1);  // strained membranes
   EXPECT_EQ(b.gmres_cells, a.gmres_cells);
-  const double dv = relative(b.velocity, a.velocity);
+  const OwnedRange mine = owned_block(nc, world);
+  ASSERT_EQ(b.velocity.rows(), static_cast<Eigen::Index>(mine.size()) * np);  // its block's rows
+  const double dv = relative(b.velocity, a.velocity.middleRows(static_cast<Eigen::Index>(mine.begin) * np, b.velocity.rows()));
   int held = 0, differ = 0;
   for (int c = 0; c < nc; ++c) {
     const Eigen::MatrixXd rows = b.traction.middleRows(c * np, np);
@@ -920,7 +935,6 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
     ++held;
     differ += rows != a.traction.middleRows(c * np, np);
   }
-  const OwnedRange mine = owned_block(nc, world);
   const long all_gathered = static_cast<long>(nc - mine.size()) * np;
   std::printf("  rank %d: velocity %.1e from one process's; traction of %d cells held (%d differ), %ld rows received "
               "(an all-gather: %ld)\n",
@@ -929,6 +943,12 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   EXPECT_EQ(differ, 0);
   EXPECT_GE(held, mine.size());
   EXPECT_EQ(b.traction_rows_received, static_cast<long>(held - mine.size()) * np);
+  long block_elsewhere = 0;  // cells of its block other ranks own in the products
+  for (int c = mine.begin; c < mine.end; ++c) {
+    const auto k = std::find(b.owners.order.begin(), b.owners.order.end(), c) - b.owners.order.begin();
+    block_elsewhere += !(b.owners.first[world.rank()] <= k && k < b.owners.first[world.rank() + 1]);
+  }
+  EXPECT_EQ(b.velocity_rows_received, block_elsewhere * np);
   const long ranks_receiving_fewer = world.sum(static_cast<long>(b.traction_rows_received < all_gathered));
   if (world.size() > 1) {
     LayerDomain domain{PeriodicBox(Eigen::Vector3d(5.0, 5.0, 48.0)), 1e-6};
@@ -937,8 +957,37 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
       EXPECT_GT(ranks_receiving_fewer, 0);
     }
   }
-  shared.share_membranes(b);
+  shared.share_for_output(b);
   EXPECT_EQ(b.traction, a.traction);
+  EXPECT_LT(relative(b.velocity, a.velocity), 1e-9);
+}
+
+// The flux sections' velocity on the ranks (section_flux.h): with lambda != 1 the cells' double
+// layer of U^n at the sections' points reads the velocity of the cells near them and of those
+// whose stencils reach the rank's slab of the sections' grid, which each rank brings from their
+// owners (halo_density.h) instead of holding every cell's. The 16 cells of
+// TractionBroughtOnlyWhereRead with lambda = 5 (first step: the start sweeps of (12) and (10)),
+// four cross-sections of the tube, each a branch: the fluxes equal one process's to 1e-9 (the
+// velocity's tolerance).
+TEST(DistributedStepper, SectionsBringTheVelocityTheyRead) {
+  const Communicator world = Communicator::world();
+  if (world.size() == 1) GTEST_SKIP() << "one process: nothing is brought";
+  const auto grids = CellGrids::make(8, 16);
+  std::vector<std::vector<SectionQuadrature>> sections;
+  for (const double z : {3.0, 15.0, 27.0, 39.0})
+    sections.push_back({section_quadrature({Eigen::Vector3d(2.5, 2.5, z - 1), Eigen::Vector3d(2.5, 2.5, z + 1), 2.1})});
+  const CellStepper one = sixteen_strained_cells_in_a_tube(grids, {}, 5.0, sections),
+                    shared = sixteen_strained_cells_in_a_tube(grids, world, 5.0, sections);
+  const FlowSolution a = one.solve(), b = shared.solve();
+  ASSERT_EQ(a.section_flux.size(), 4u);
+  EXPECT_EQ(b.gmres_cells, a.gmres_cells);
+  double largest = 0.0;
+  for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(b.section_flux[k] / a.section_flux[k] - 1));
+  std::printf("  rank %d: section fluxes %.6f %.6f %.6f %.6f, largest relative difference from one process's %.1e; "
+              "%ld velocity rows received\n",
+              world.rank(), a.section_flux[0], a.section_flux[1], a.section_flux[2], a.section_flux[3], largest,
+              b.velocity_rows_received);
+  EXPECT_LT(largest, 1e-9);
 }
 
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells,

@@ -1,9 +1,10 @@
 #pragma once
-// The step's traction f^n on the ranks: the single-layer density of (10) and (12). Each rank
-// computes the membranes of the cells it owns in the step's products (cell_owners.h) and holds
-// their rows; the step's operators read those and the rows of their halo, which each names
-// once it has found it (DensityHalo, cell_layers.h): only the halo's rows travel, not every
-// cell's to every rank. On one rank every row is here.
+// A density of the step on the ranks, held by the cells' owners in the step's products
+// (cell_owners.h): the traction f^n, the single-layer density of (10) and (12), and the
+// velocity U^n, the double-layer density of the flux sections' velocity. Each rank holds its
+// owned cells' rows; an operator reads those and the rows of its halo, which it names once it
+// has found it (DensityHalo, cell_layers.h): only the halo's rows travel, not every cell's to
+// every rank. On one rank every row is here.
 #include <Eigen/Core>
 #include <vector>
 
@@ -13,11 +14,11 @@
 
 namespace rbcflow {
 
-class StepTraction {
+class HaloDensity {
  public:
   // `owned`: the rows of this rank's cells in `owners`' order (positions owners.first[rank] ..
   // owners.first[rank + 1] - 1).
-  StepTraction(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks);
+  HaloDensity(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks);
 
   // Stacked in owner order: the owned cells' rows and those brought so far, zero elsewhere. The
   // operators refer to this matrix; it stays in place until release().
@@ -28,6 +29,9 @@ class StepTraction {
   DensityHalo bringer() {
     return [this](const std::vector<int>& halo) { bring(halo); };
   }
+  // The rows of the cells `cells` (indices of the cells, not positions), stacked in cell order:
+  // those not here brought from their owners. Collective.
+  Eigen::MatrixXd cells_rows(const OwnedRange& cells);
   long rows_received() const { return homes_.rows_received(); }
   // The density in cell order (the rows never brought zero); the operators are done with it.
   Eigen::MatrixXd release();

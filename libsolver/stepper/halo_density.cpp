@@ -1,4 +1,4 @@
-#include "step_traction.h"
+#include "halo_density.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 
 namespace rbcflow {
 
-StepTraction::StepTraction(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks)
+HaloDensity::HaloDensity(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks)
     : owners_(std::move(owners)),
       nodes_per_cell_(nodes_per_cell),
       ranks_(ranks),
@@ -16,14 +16,14 @@ StepTraction::StepTraction(Eigen::MatrixXd owned, CellOwners owners, int nodes_p
   const int np = nodes_per_cell_;
   const int first = owners_.first[ranks.rank()], end = owners_.first[ranks.rank() + 1];
   if (owned_.rows() != static_cast<Eigen::Index>(end - first) * np || owned_.cols() != 3)
-    throw std::invalid_argument("StepTraction: the owned rows do not fit this rank's cells");
+    throw std::invalid_argument("HaloDensity: the owned rows do not fit this rank's cells");
   here_.assign(static_cast<std::size_t>(nc), false);
   std::fill(here_.begin() + first, here_.begin() + end, true);
   density_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nc) * np, 3);
   density_.middleRows(static_cast<Eigen::Index>(first) * np, owned_.rows()) = owned_;
 }
 
-void StepTraction::bring(const std::vector<int>& halo) {
+void HaloDensity::bring(const std::vector<int>& halo) {
   if (ranks_.size() == 1) return;  // every row is here
   const int np = nodes_per_cell_;
   std::vector<int> wanted, rows;  // positions in owner order (halo is ascending), their node rows
@@ -39,7 +39,22 @@ void StepTraction::bring(const std::vector<int>& halo) {
     density_.middleRows(static_cast<Eigen::Index>(k) * np, np) = brought.middleRows(static_cast<Eigen::Index>(k) * np, np);
 }
 
-Eigen::MatrixXd StepTraction::release() {
+Eigen::MatrixXd HaloDensity::cells_rows(const OwnedRange& cells) {
+  const int nc = static_cast<int>(owners_.order.size());
+  const Eigen::Index np = nodes_per_cell_;
+  std::vector<int> position(static_cast<std::size_t>(nc));
+  for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(owners_.order[k])] = k;
+  std::vector<int> wanted;
+  for (int c = cells.begin; c < cells.end; ++c) wanted.push_back(position[static_cast<std::size_t>(c)]);
+  std::sort(wanted.begin(), wanted.end());
+  bring(wanted);
+  Eigen::MatrixXd rows(cells.size() * np, 3);
+  for (int c = cells.begin; c < cells.end; ++c)
+    rows.middleRows((c - cells.begin) * np, np) = density_.middleRows(position[static_cast<std::size_t>(c)] * np, np);
+  return rows;
+}
+
+Eigen::MatrixXd HaloDensity::release() {
   if (owners_.in_cell_order()) return std::move(density_);
   return owners_.to_cell_order(density_, nodes_per_cell_);
 }
