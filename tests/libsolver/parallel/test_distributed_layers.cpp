@@ -972,6 +972,13 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
 TEST(DistributedStepper, SectionsBringTheVelocityTheyRead) {
   const Communicator world = Communicator::world();
   if (world.size() == 1) GTEST_SKIP() << "one process: nothing is brought";
+#if defined(__SANITIZE_ADDRESS__)
+  // 20-27 s in Release; under AddressSanitizer on 2 cores TractionBroughtOnlyWhereRead's tube
+  // took 303 s and with this test (lambda = 5: the start sweeps) the 2-rank binary ran past its
+  // 900 s timeout. The Release pass runs it; the sanitizer pass checks the same HaloDensity in
+  // TractionBroughtOnlyWhereRead.
+  GTEST_SKIP() << "too slow under AddressSanitizer; run in the Release pass";
+#endif
   const auto grids = CellGrids::make(8, 16);
   std::vector<std::vector<SectionQuadrature>> sections;
   for (const double z : {3.0, 15.0, 27.0, 39.0})
