@@ -54,14 +54,29 @@ void share_membranes(std::vector<MembraneState>& membranes, const CellOwners& ow
   share_blocks(ranks, items);
 }
 
-// Every cell's shape on every rank, from those of the ranks' own cells (owned_block).
-void share_shapes(std::vector<Cell>& cells, const Communicator& ranks) {
+// Every cell's shape on every rank, from those of the ranks' own cells in `owners` (whose
+// blocks in owner order have owned_block's sizes, share_blocks' blocks).
+void share_shapes(std::vector<Cell>& cells, const CellOwners& owners, const Communicator& ranks) {
   std::vector<std::vector<std::span<double>>> items;
-  for (Cell& c : cells) {
-    Eigen::MatrixXd& x = c.shape.coeffs().values();
+  for (const int c : owners.order) {
+    Eigen::MatrixXd& x = cells[static_cast<std::size_t>(c)].shape.coeffs().values();
     items.push_back({std::span<double>(x.data(), static_cast<std::size_t>(x.size()))});
   }
   share_blocks(ranks, items);
+}
+
+// The rows (nodes_per_cell a cell) of the cells `owners` gives rank `rank` in `held`, a matrix
+// whose rows are stacked in `held_by`'s order (zero where not read), in `owners`' order.
+Eigen::MatrixXd rows_of_owned(const Eigen::MatrixXd& held, const CellOwners& held_by, const CellOwners& owners,
+                              int rank, int np) {
+  std::vector<int> position(held_by.order.size());
+  for (std::size_t k = 0; k < held_by.order.size(); ++k) position[static_cast<std::size_t>(held_by.order[k])] = static_cast<int>(k);
+  const int first = owners.first[rank], end = owners.first[rank + 1];
+  Eigen::MatrixXd rows(static_cast<Eigen::Index>(end - first) * np, 3);
+  for (int k = first; k < end; ++k)
+    rows.middleRows(static_cast<Eigen::Index>(k - first) * np, np) =
+        held.middleRows(static_cast<Eigen::Index>(position[static_cast<std::size_t>(owners.order[k])]) * np, np);
+  return rows;
 }
 
 // The largest of the ranks' values, the same on every rank.
@@ -125,6 +140,7 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
     state_.volume0.push_back(enclosed_volume(g));
     state_.area0.push_back(surface_area(g));
   }
+  history_owners_ = owners_by_block(static_cast<int>(cells_.size()), options_.domain.ranks.size());
 }
 
 namespace {
@@ -315,25 +331,34 @@ FlowSolution CellStepper::solve() const {
     s.cell_residual = v.gmres.relative_residual;
   };
 
-  // The velocities' history is kept by the cells' index blocks (owned_block): each rank brings
-  // the rows its products read, in owner order and zero elsewhere: its own cells' for the guess
-  // of (10) and, for the cells' double layer at the wall, those of the wall's halo too.
+  // The velocities' history is held by the last step's owners (history_owners_): each rank
+  // brings the rows its products read, in this step's owner order and zero elsewhere: its own
+  // cells' for the guess of (10) (from another rank only where a cell's owner changed) and, for
+  // the cells' double layer at the wall, those of the wall's halo too.
   Eigen::MatrixXd velocity_guess, previous_velocity;
   if (nc > 0 && velocities_held() > 0) {
-    OwnedRows homes(nc, np, options_.domain.ranks);
+    const CellOwners& held_by = history_owners_;
+    OwnedRows holders(held_by.first, np, options_.domain.ranks);
     if (options_.domain.ranks.size() > 1) {
       const int r = options_.domain.ranks.rank();
       std::vector<int> read(owners.order.begin() + owners.first[r], owners.order.begin() + owners.first[r + 1]);
       if (at_wall && lambda != 1.0)
         for (int k : layers->halo_with(at_wall->slabs())) read.push_back(owners.order[k]);
-      std::sort(read.begin(), read.end());
+      std::vector<int> position(static_cast<std::size_t>(nc));  // in held_by's order
+      for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(held_by.order[k])] = k;
       std::vector<int> rows;
       for (int c : read)
-        for (int i = 0; i < np; ++i) rows.push_back(c * np + i);
-      homes.read_only(rows);
+        for (int i = 0; i < np; ++i) rows.push_back(position[static_cast<std::size_t>(c)] * np + i);
+      std::sort(rows.begin(), rows.end());
+      holders.read_only(rows);
     }
-    velocity_guess = owners.to_owner_order(homes.gather_read(extrapolated_velocity()), np);
-    previous_velocity = owners.to_owner_order(homes.gather_read(state_.previous_velocity), np);
+    auto in_owner_order = [&](const Eigen::MatrixXd& held) {
+      const Eigen::MatrixXd by_holders = holders.gather_read(held);
+      if (held_by.order == owners.order) return by_holders;
+      return owners.to_owner_order(held_by.to_cell_order(by_holders, np), np);
+    };
+    velocity_guess = in_owner_order(extrapolated_velocity());
+    previous_velocity = in_owner_order(state_.previous_velocity);
   }
   try {
     const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
@@ -381,8 +406,7 @@ FlowSolution CellStepper::solve() const {
     throw std::runtime_error(what + at_step(step));
   }
   // U^n held by its owners in the products: the flux sections' double layer brings its halo's
-  // rows, and each rank then brings its block of the cells' (owned_block, the velocities'
-  // history), not every cell's.
+  // rows; each rank keeps its own cells' (the velocities' history), not every cell's.
   std::optional<HaloDensity> velocity;
   if (nc > 0) velocity.emplace(std::move(s.velocity), owners, np, options_.domain.ranks);
   if (section_meter_) {
@@ -409,7 +433,7 @@ FlowSolution CellStepper::solve() const {
     s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
   if (velocity) {
-    s.velocity = velocity->cells_rows(owned_block(nc, options_.domain.ranks));
+    s.velocity = velocity->owned();
     s.velocity_rows_received = velocity->rows_received();
   }
   if (step_traction) {
@@ -425,7 +449,7 @@ FlowSolution CellStepper::solve() const {
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
   // The cells' state held on this rank (docs/scaling.md): every cell's shapes, traction on the
   // N grid (filled at its owned and halo cells) and this step's velocity, the membrane states of
-  // its cells in the products and its block's last three velocities (every cell's on one rank).
+  // its cells in the products and its own cells' last three velocities (every cell's on one rank).
   std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
@@ -449,10 +473,10 @@ void CellStepper::share_for_output(FlowSolution& s) const {
   const CellOwners& owners = s.owners;
   share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
   const int np = points_per_cell(), first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
-  // Every rank's block of the cells' rows, unless shared already (a rank whose block is every
+  // Every rank's own cells' rows, unless shared already (a rank whose block is every
   // cell cannot tell by itself).
   const bool shared = ranks.min(s.velocity.rows() == static_cast<Eigen::Index>(nc) * np ? 1 : 0) == 1;
-  if (!shared) s.velocity = OwnedRows(nc, np, ranks).gather(block_velocity(s));
+  if (!shared) s.velocity = owners.to_cell_order(OwnedRows(owners.first, np, ranks).gather(owned_velocity(s)), np);
   const Eigen::MatrixXd by_owners = owners.to_owner_order(s.traction, np);
   s.traction = owners.to_cell_order(
       OwnedRows(owners.first, np, ranks).gather(by_owners.middleRows(static_cast<Eigen::Index>(first) * np,
@@ -477,11 +501,12 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   const SHTransform& tn = *grids_->n_grid;
   // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
   const bool ab2 = options_.scheme == TimeScheme::ab2 && velocities_held() > 0;
-  // Each rank moves, separates (collision.h) and corrects its block of the cells (owned_block),
-  // the ranks sharing the shapes after each; a cell that became invalid on one rank stops every
-  // rank (the first one named).
+  // Each rank moves, separates (collision.h) and corrects its own cells in the step's products
+  // (s.owners: it holds their velocities), the ranks sharing the shapes after each; a cell that
+  // became invalid on one rank stops every rank (the first one named).
   const Communicator& ranks = options_.domain.ranks;
-  const OwnedRange mine = owned_block(nc, ranks);
+  const CellOwners& owners = s.owners;
+  const int first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
   auto stop_if_invalid = [&](int first_invalid) {
     first_invalid = static_cast<int>(ranks.min(first_invalid));
     if (first_invalid < nc)
@@ -489,12 +514,13 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
                                at_step(state_.steps + 1));
   };
   int first_invalid = nc;
-  const auto velocity = block_velocity(s);
-  for (int c = mine.begin; c < mine.end; ++c) {
-    const SHCoeffs rate = tn.analyze(velocity.middleRows((c - mine.begin) * np, np));
+  const Eigen::MatrixXd velocity = owned_velocity(s);
+  for (int k = first; k < end; ++k) {
+    const int c = owners.order[k];
+    const SHCoeffs rate = tn.analyze(velocity.middleRows((k - first) * np, np));
     Eigen::MatrixXd& x = cells_[c].shape.coeffs().values();
-    if (ab2) {
-      const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows((c - mine.begin) * np, np));
+    if (ab2) {  // U^{n-1} at s.owners' cells (migrate_history)
+      const SHCoeffs previous = tn.analyze(state_.previous_velocity.middleRows((k - first) * np, np));
       x += options_.dt * (1.5 * rate.values() - 0.5 * previous.values());
     } else {
       x += options_.dt * rate.values();
@@ -502,12 +528,16 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     if (!x.allFinite()) first_invalid = std::min(first_invalid, c);
   }
   stop_if_invalid(first_invalid);
-  share_shapes(cells_, ranks);
+  share_shapes(cells_, owners, ranks);
   if (options_.collision_threshold > 0) {
+    // In owner order, so that each rank pushes its own cells (remove_collisions takes
+    // owned_block's blocks of the shapes it is given).
     std::vector<SHSurface> shapes;
-    for (const Cell& c : cells_) shapes.push_back(c.shape);
+    for (const int c : owners.order) shapes.push_back(cells_[c].shape);
     const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
-    const CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold, ranks);
+    CollisionReport k = remove_collisions(shapes, tn, period, wall_distance_.get(), options_.collision_threshold, ranks);
+    if (k.closest_cell >= 0) k.closest_cell = owners.order[k.closest_cell];
+    if (k.closest_other >= 0) k.closest_other = owners.order[k.closest_other];
     // Surfaces left crossing (each other or the wall) make the boundary integrals meaningless
     // and the run blows up some steps later: stop here, at the last checkpoint's state.
     if (!k.converged && k.min_separation < 0) {
@@ -521,12 +551,13 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
                                ": the cells moved into each other (or the wall) faster than the removal separates "
                                "them; try a smaller time step or a higher order of the cells");
     }
-    for (int c = 0; c < nc; ++c) cells_[c].shape = std::move(shapes[c]);
+    for (int i = 0; i < nc; ++i) cells_[owners.order[i]].shape = std::move(shapes[i]);
     report.collision_pairs = k.cell_pairs;
     report.wall_contacts = k.wall_contacts;
     report.collision_displacement = k.max_displacement;
   }
-  for (int c = mine.begin; c < mine.end; ++c) {
+  for (int k = first; k < end; ++k) {
+    const int c = owners.order[k];
     if (options_.volume_constraint) enforce_volume(c);
     const SurfaceGeometry g = cells_[c].shape.geometry(tn);
     const double dv = std::abs(enclosed_volume(g) / state_.volume0[c] - 1.0);
@@ -541,14 +572,14 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   stop_if_invalid(first_invalid);
   report.max_volume_error = largest(report.max_volume_error, ranks);
   report.max_area_error = largest(report.max_area_error, ranks);
-  share_shapes(cells_, ranks);
+  share_shapes(cells_, owners, ranks);
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {
   const int a = options_.tube->axis;
   const double radius = options_.tube->radius;
   const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
-  return cells_volume_flux(shapes, block_velocity(s), *grids_->n_grid, a, options_.domain.ranks) /
+  return cells_volume_flux(s.owners.to_owner_order(shapes), owned_velocity(s), *grids_->n_grid, a, options_.domain.ranks) /
          (options_.domain.box->lengths()[a] * tube_flux);
 }
 
@@ -582,12 +613,15 @@ StepReport CellStepper::advance(const FlowSolution& s) {
                                                options_.domain.ranks);
     }
   }
-  if (!cells_.empty()) move_cells(s, report);
+  if (!cells_.empty()) {
+    migrate_history(s.owners);  // U^{n-1} for AB2's move; the history with U^n held alike
+    move_cells(s, report);
+  }
   state_.oldest_velocity = std::move(state_.older_velocity);
   state_.older_velocity = std::move(state_.previous_velocity);
   state_.older_wall_force = std::move(state_.previous_wall_force);
   if (!cells_.empty()) {
-    state_.previous_velocity = block_velocity(s);
+    state_.previous_velocity = owned_velocity(s);
   } else {
     state_.previous_velocity = s.velocity;
   }
@@ -606,13 +640,42 @@ int CellStepper::velocities_held() const {
   return held;
 }
 
-Eigen::Block<const Eigen::MatrixXd> CellStepper::block_velocity(const FlowSolution& s) const {
+Eigen::MatrixXd CellStepper::owned_velocity(const FlowSolution& s) const {
   const int nc = static_cast<int>(cells_.size());
-  const Eigen::Index np = points_per_cell();
-  const OwnedRange mine = owned_block(nc, options_.domain.ranks);
-  const bool every_cell = s.velocity.rows() == nc * np;  // after share_for_output (or on one rank)
-  if (!every_cell && s.velocity.rows() != mine.size() * np) throw std::invalid_argument("advance: not this stepper's solution");
-  return s.velocity.middleRows(every_cell ? mine.begin * np : 0, mine.size() * np);
+  const int np = points_per_cell();
+  const Communicator& ranks = options_.domain.ranks;
+  const CellOwners& owners = s.owners;
+  if (owners.order.size() != static_cast<std::size_t>(nc) || owners.first.size() != static_cast<std::size_t>(ranks.size()) + 1)
+    throw std::invalid_argument("advance: not this stepper's solution (its owners are another's)");
+  const Eigen::Index owned = static_cast<Eigen::Index>(owners.first[ranks.rank() + 1] - owners.first[ranks.rank()]) * np;
+  // As solve() leaves it; where the rank owns every cell, owner order is the cells' own.
+  if (s.velocity.rows() == owned) return s.velocity;
+  if (s.velocity.rows() != static_cast<Eigen::Index>(nc) * np)
+    throw std::invalid_argument("advance: not this stepper's solution");
+  return rows_of_owned(s.velocity, owners_by_block(nc, 1), owners, ranks.rank(), np);  // after share_for_output
+}
+
+void CellStepper::migrate_history(const CellOwners& to) {
+  const Communicator& ranks = options_.domain.ranks;
+  const int held = velocities_held();
+  if (ranks.size() == 1 || held == 0 || (to.order == history_owners_.order && to.first == history_owners_.first)) {
+    history_owners_ = to;
+    return;
+  }
+  const int nc = static_cast<int>(cells_.size());
+  const int np = points_per_cell();
+  std::vector<int> position(static_cast<std::size_t>(nc));  // in history_owners_' order
+  for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(history_owners_.order[k])] = k;
+  std::vector<int> rows;
+  for (int k = to.first[ranks.rank()]; k < to.first[ranks.rank() + 1]; ++k)
+    for (int i = 0; i < np; ++i) rows.push_back(position[static_cast<std::size_t>(to.order[k])] * np + i);
+  std::sort(rows.begin(), rows.end());
+  OwnedRows holders(history_owners_.first, np, ranks);
+  holders.read_only(rows);
+  Eigen::MatrixXd* history[] = {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity};
+  for (int h = 0; h < held; ++h)
+    *history[h] = rows_of_owned(holders.gather_read(*history[h]), history_owners_, to, ranks.rank(), np);
+  history_owners_ = to;
 }
 
 Eigen::MatrixXd CellStepper::extrapolated_velocity() const {
@@ -627,9 +690,9 @@ StepperState CellStepper::state() const {
   StepperState s = state_;
   for (const Cell& c : cells_) s.shapes.push_back(c.shape.coeffs());
   if (cells_.empty()) return s;
-  const OwnedRows homes(static_cast<int>(cells_.size()), points_per_cell(), options_.domain.ranks);
+  const OwnedRows holders(history_owners_.first, points_per_cell(), options_.domain.ranks);
   for (Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity})
-    if (u->cols() == 3) *u = homes.gather(*u);
+    if (u->cols() == 3) *u = history_owners_.to_cell_order(holders.gather(*u), points_per_cell());
   return s;
 }
 
@@ -654,6 +717,7 @@ void CellStepper::restore(const StepperState& s) {
   state_ = s;
   state_.shapes.clear();  // held once, in the cells
   for (std::size_t c = 0; c < nc; ++c) cells_[c].shape.coeffs() = s.shapes[c];
+  history_owners_ = owners_by_block(static_cast<int>(nc), options_.domain.ranks.size());
   const OwnedRange mine = owned_block(static_cast<int>(nc), options_.domain.ranks);
   for (Eigen::MatrixXd* u : {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity}) {
     if (u->size() == 0) {

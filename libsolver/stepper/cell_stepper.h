@@ -63,9 +63,9 @@ struct Cell {
 
 // What solve() found for the current state (X^n).
 struct FlowSolution {
-  // U^n, stacked over cells (nodes x 3). On several ranks solve() leaves this rank's block of
-  // the cells' rows (owned_block, those advance() moves); CellStepper::share_for_output every
-  // cell's.
+  // U^n, stacked over cells (nodes x 3). On several ranks solve() leaves the rows of this rank's
+  // own cells in the products, in owner order (`owners`: the cells advance() moves, whose rows
+  // the GMRES of (10) ended with here); CellStepper::share_for_output every cell's.
   Eigen::MatrixXd velocity;
   // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
   // the cells this rank's operators read (its own in the products and their halo) and zero
@@ -148,7 +148,7 @@ class CellStepper {
   StepReport step() { return advance(solve()); }
   // Every cell's membrane state, traction and velocity in `s` (this stepper's solve()) on every
   // rank, for output: solve() computes each rank's own cells' and brings each rank only the
-  // tractions it reads and its block's velocities. Collective: every rank calls it; on one rank
+  // tractions and velocities it reads. Collective: every rank calls it; on one rank
   // it changes nothing.
   void share_for_output(FlowSolution& s) const;
 
@@ -161,8 +161,8 @@ class CellStepper {
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
-  // Surface velocity of the last step, stacked over this rank's block of the cells
-  // (owned_block: every cell on one rank; nodes x 3).
+  // Surface velocity of the last step, stacked over this rank's own cells in that step's
+  // products, in owner order (every cell on one rank; nodes x 3).
   const Eigen::MatrixXd& velocity() const { return state_.previous_velocity; }
   const std::vector<double>& initial_volumes() const { return state_.volume0; }
   const std::vector<double>& initial_areas() const { return state_.area0; }
@@ -185,13 +185,19 @@ class CellStepper {
  private:
   void archive_wall(StateArchive& a) const;
   // How many of U^{n-1}, U^{n-2}, U^{n-3} the state holds (0-3), and the guess of U^n from them
-  // (3 U^{n-1} - 3 U^{n-2} + U^{n-3}, or fewer terms): this rank's block of the cells' rows.
+  // (3 U^{n-1} - 3 U^{n-2} + U^{n-3}, or fewer terms): the rows of this rank's cells in
+  // history_owners_.
   int velocities_held() const;
   Eigen::MatrixXd extrapolated_velocity() const;
   void enforce_volume(int c);
-  // The rows of this rank's block of the cells (owned_block) of U^n in `s`: all of s.velocity as
-  // solve() leaves it, or its block's after share_for_output.
-  Eigen::Block<const Eigen::MatrixXd> block_velocity(const FlowSolution& s) const;
+  // The rows of this rank's own cells in s.owners of U^n in `s`, in owner order: all of
+  // s.velocity as solve() leaves it, or those cells' rows after share_for_output. Throws
+  // std::invalid_argument for a solution of another stepper.
+  Eigen::MatrixXd owned_velocity(const FlowSolution& s) const;
+  // The velocities' history brought to the rows of this rank's cells in `to` (a step's owners)
+  // from those of history_owners_: only the rows of cells whose owner changed travel.
+  // Collective.
+  void migrate_history(const CellOwners& to);
   // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
   // cells' current shapes.
   double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const;
@@ -211,10 +217,14 @@ class CellStepper {
   // freed before it returns.
   std::shared_ptr<WorkArrayPool> work_arrays_ = std::make_shared<WorkArrayPool>();
   std::unique_ptr<SpmeGridCache> grid_cache_ = std::make_unique<SpmeGridCache>(work_arrays_);  // the cells' SPME grids
-  // The velocities in it are this rank's block of the cells' rows (owned_block), absent ones
-  // 0 x 0; state() gathers them. Its shapes are empty: they are held once, in cells_, and
-  // state() copies them.
+  // The velocities in it are the rows of this rank's cells in history_owners_ (in its order),
+  // absent ones 0 x 0; state() gathers them. Its shapes are empty: they are held once, in
+  // cells_, and state() copies them.
   StepperState state_;
+  // The owners whose cells' rows of the velocities' history each rank holds: the last step's
+  // in the products (cell_owners.h), so that the next step brings only the rows of the cells
+  // whose owner changed; owned_block's blocks after construction and restore().
+  CellOwners history_owners_;
 };
 
 }  // namespace rbcflow

@@ -39,21 +39,6 @@ void HaloDensity::bring(const std::vector<int>& halo) {
     density_.middleRows(static_cast<Eigen::Index>(k) * np, np) = brought.middleRows(static_cast<Eigen::Index>(k) * np, np);
 }
 
-Eigen::MatrixXd HaloDensity::cells_rows(const OwnedRange& cells) {
-  const int nc = static_cast<int>(owners_.order.size());
-  const Eigen::Index np = nodes_per_cell_;
-  std::vector<int> position(static_cast<std::size_t>(nc));
-  for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(owners_.order[k])] = k;
-  std::vector<int> wanted;
-  for (int c = cells.begin; c < cells.end; ++c) wanted.push_back(position[static_cast<std::size_t>(c)]);
-  std::sort(wanted.begin(), wanted.end());
-  bring(wanted);
-  Eigen::MatrixXd rows(cells.size() * np, 3);
-  for (int c = cells.begin; c < cells.end; ++c)
-    rows.middleRows((c - cells.begin) * np, np) = density_.middleRows(position[static_cast<std::size_t>(c)] * np, np);
-  return rows;
-}
-
 Eigen::MatrixXd HaloDensity::release() {
   if (owners_.in_cell_order()) return std::move(density_);
   return owners_.to_cell_order(density_, nodes_per_cell_);

@@ -29,9 +29,8 @@ class HaloDensity {
   DensityHalo bringer() {
     return [this](const std::vector<int>& halo) { bring(halo); };
   }
-  // The rows of the cells `cells` (indices of the cells, not positions), stacked in cell order:
-  // those not here brought from their owners. Collective.
-  Eigen::MatrixXd cells_rows(const OwnedRange& cells);
+  // This rank's owned cells' rows, in owner order (as given).
+  const Eigen::MatrixXd& owned() const { return owned_; }
   long rows_received() const { return homes_.rows_received(); }
   // The density in cell order (the rows never brought zero); the operators are done with it.
   Eigen::MatrixXd release();

@@ -783,8 +783,8 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
   }
 }
 
-// advance() on the ranks (cell_stepper.h): each rank moves and corrects its block of the cells
-// and the ranks share the shapes, which are then the same bits on every rank and as on one
+// advance() on the ranks (cell_stepper.h): each rank moves and corrects its own cells in the
+// step's products (in free space owned_block's blocks) and the ranks share the shapes, which are then the same bits on every rank and as on one
 // rank (each cell's arithmetic is its owner's alone); a cell made invalid (NaN velocity) on one
 // rank stops every rank, naming it. Three red cells in free space in a shear flow, lambda = 1,
 // volume constraint on, one step from one rank's solution.
@@ -811,7 +811,9 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   const auto grids = CellGrids::make(8, 16);
   CellStepper one = three_cells_in_shear(grids, {}), shared = three_cells_in_shear(grids, world);
   FlowSolution s = one.solve();
-  const StepReport a = one.advance(s), b = shared.advance(s);
+  FlowSolution on_the_ranks = s;  // every cell's velocity, with the ranks' owners in free space
+  on_the_ranks.owners = owners_by_block(3, world.size());
+  const StepReport a = one.advance(s), b = shared.advance(on_the_ranks);
   double largest = 0.0;
   for (int c = 0; c < 3; ++c) {
     const Eigen::MatrixXd& x = shared.cells()[c].shape.coeffs().values();
@@ -823,12 +825,12 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   EXPECT_EQ(largest, 0.0);
   EXPECT_EQ(a.max_volume_error, b.max_volume_error);
   EXPECT_EQ(a.max_area_error, b.max_area_error);
-  // Each rank keeps its block's rows of U^n; state() gathers every cell's.
+  // Each rank keeps its own cells' rows of U^n; state() gathers every cell's.
   EXPECT_EQ(shared.velocity().rows(), owned_block(3, world).size() * s.velocity.rows() / 3);
   EXPECT_EQ(shared.state().previous_velocity, one.state().previous_velocity);
-  s.velocity.row(s.velocity.rows() - 1)(0) = std::nan("");  // the last cell: the last rank's
+  on_the_ranks.velocity.row(s.velocity.rows() - 1)(0) = std::nan("");  // the last cell: the last rank's
   try {
-    shared.advance(s);
+    shared.advance(on_the_ranks);
     ADD_FAILURE() << "advance moved a cell with a NaN velocity";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("cell 2 became invalid (NaN) at step 2"), std::string::npos) << e.what();
@@ -847,6 +849,7 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   FlowSolution first = one.solve();
   first.velocity.bottomRows(first.velocity.rows() / 3) *= 10.0;
   one.advance(first);
+  first.owners = owners_by_block(3, world.size());  // the ranks' owners in free space
   shared.advance(first);
   FlowSolution a = one.solve(), b = shared.solve();
   EXPECT_EQ((b.traction - a.traction).cwiseAbs().maxCoeff(), 0.0);  // free space: every cell in the halo
@@ -879,8 +882,7 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
 
 // The step's traction on the ranks (halo_density.h): each rank computes its block's membranes,
 // and the step's operators (the layers, the layers at the wall) bring it only the traction rows
-// they read; of the velocity it receives only its block of the cells' rows that other ranks
-// own. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
+// they read; it keeps its own cells' rows of the velocity and receives none. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
 // strained (its membrane at rest at 0.95-0.97 of its size), lambda = 1, a mean velocity along
 // the tube: one step's solve on the ranks gives one process's velocity (to 1e-9: the sums in
 // another order, the same iterations), the traction's rows a rank holds are one process's bits
@@ -932,8 +934,11 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   ASSERT_GT(a.traction.cwiseAbs().maxCoeff(), 0.1);  // strained membranes
   EXPECT_EQ(b.gmres_cells, a.gmres_cells);
   const OwnedRange mine = owned_block(nc, world);
-  ASSERT_EQ(b.velocity.rows(), static_cast<Eigen::Index>(mine.size()) * np);  // its block's rows
-  const double dv = relative(b.velocity, a.velocity.middleRows(static_cast<Eigen::Index>(mine.begin) * np, b.velocity.rows()));
+  const int first = b.owners.first[world.rank()], end = b.owners.first[world.rank() + 1];
+  ASSERT_EQ(b.velocity.rows(), static_cast<Eigen::Index>(end - first) * np);  // its own cells' rows
+  Eigen::MatrixXd a_mine(b.velocity.rows(), 3);  // one process's rows of those cells
+  for (int k = first; k < end; ++k) a_mine.middleRows((k - first) * np, np) = a.velocity.middleRows(b.owners.order[k] * np, np);
+  const double dv = relative(b.velocity, a_mine);
   int held = 0, differ = 0;
   for (int c = 0; c < nc; ++c) {
     const Eigen::MatrixXd rows = b.traction.middleRows(c * np, np);
@@ -949,12 +954,7 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   EXPECT_EQ(differ, 0);
   EXPECT_GE(held, mine.size());
   EXPECT_EQ(b.traction_rows_received, static_cast<long>(held - mine.size()) * np);
-  long block_elsewhere = 0;  // cells of its block other ranks own in the products
-  for (int c = mine.begin; c < mine.end; ++c) {
-    const auto k = std::find(b.owners.order.begin(), b.owners.order.end(), c) - b.owners.order.begin();
-    block_elsewhere += !(b.owners.first[world.rank()] <= k && k < b.owners.first[world.rank() + 1]);
-  }
-  EXPECT_EQ(b.velocity_rows_received, block_elsewhere * np);
+  EXPECT_EQ(b.velocity_rows_received, 0);  // the velocity stays with its owners
   const long ranks_receiving_fewer = world.sum(static_cast<long>(b.traction_rows_received < all_gathered));
   if (world.size() > 1) {
     LayerDomain domain{PeriodicBox(Eigen::Vector3d(5.0, 5.0, 48.0)), 1e-6};
@@ -1001,6 +1001,81 @@ TEST(DistributedStepper, SectionsBringTheVelocityTheyRead) {
               world.rank(), a.section_flux[0], a.section_flux[1], a.section_flux[2], a.section_flux[3], largest,
               b.velocity_rows_received);
   EXPECT_LT(largest, 1e-9);
+}
+
+// The velocities' history on the ranks (cell_stepper.h): each rank holds the rows of its own
+// cells in the last step's products and moves them (AB2 reads U^{n-1} there); when a cell's
+// owner changes, its rows move with it. The three cells of CellsOwnedAlongTheSlabsSolveAsOneRank
+// listed from the top of the box down (owned along z: not their index blocks on 2 and 3
+// ranks), strained (at rest at 0.96 of their size), lambda = 5, AB2, the volume constraint and
+// the collision removal on. One process takes 5 steps; the ranks restore its state after 3
+// (every cell's three velocities, held then by the index blocks: restore's) and take 2: the
+// first step's solve brings its guess's rows from the holders, its advance migrates the
+// history to the step's owners. The shapes equal one process's to 1e-9 (the reductions' order:
+// the tolerance of the acceptance runs, docs/scaling.md), the iterations are the same (the
+// same guess), and the gathered history equals one process's.
+CellStepper three_strained_cells_down_a_box(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks) {
+  std::vector<SHCoeffs> shapes = three_cells(grids->order);
+  std::reverse(shapes.begin(), shapes.end());  // z = 3.9, 2.95, 2.0
+  SHSurface rest = make_biconcave(grids->order);
+  rest.coeffs().values() *= 0.96;
+  std::vector<Cell> cells;
+  for (const SHCoeffs& x : shapes) {
+    Cell c;
+    c.shape = SHSurface(x);
+    c.membrane = std::make_shared<const Membrane>(rest, grids,
+                                                  MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
+    cells.push_back(std::move(c));
+  }
+  CellStepperOptions o;
+  o.dt = 2e-3;
+  o.domain = LayerDomain{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
+  o.domain.ranks = ranks;
+  o.mean_velocity = Eigen::Vector3d(0, 0, 1);
+  o.viscosity_ratio = 5.0;
+  o.scheme = TimeScheme::ab2;
+  o.volume_constraint = true;
+  o.collision_threshold = 0.05;
+  o.gmres_tolerance = 1e-10;
+  return CellStepper(std::move(cells), grids, o);
+}
+
+TEST(DistributedStepper, VelocitiesHistoryFollowsItsOwners) {
+  const Communicator world = Communicator::world();
+  const auto grids = CellGrids::make(8, 16);
+  CellStepper one = three_strained_cells_down_a_box(grids, {}), shared = three_strained_cells_down_a_box(grids, world);
+  for (int step = 0; step < 3; ++step) one.step();
+  shared.restore(one.state());
+  int iterations_one = 0, iterations_shared = 0;
+  for (int step = 0; step < 2; ++step) {
+    const FlowSolution a = one.solve(), b = shared.solve();
+    iterations_one += a.gmres_cells;
+    iterations_shared += b.gmres_cells;
+    if (step == 0 && world.size() > 1) {
+      ASSERT_FALSE(b.owners.in_cell_order()) << "the owners are the index blocks: nothing to migrate";
+    }
+    ASSERT_GT(a.membrane[0].traction.values().cwiseAbs().maxCoeff(), 0.1);  // strained membranes
+    one.advance(a);
+    shared.advance(b);
+  }
+  double largest = 0.0, scale = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd& x = one.cells()[c].shape.coeffs().values();
+    largest = std::max(largest, (shared.cells()[c].shape.coeffs().values() - x).cwiseAbs().maxCoeff());
+    scale = std::max(scale, x.cwiseAbs().maxCoeff());
+  }
+  const StepperState sa = one.state(), sb = shared.state();
+  const double du = relative(sb.previous_velocity, sa.previous_velocity),
+               dw = relative(sb.oldest_velocity, sa.oldest_velocity);
+  std::printf("  rank %d: after 2 steps from the restored state, shapes %.1e from one process's, U^{n-1} %.1e, U^{n-3} "
+              "%.1e; %d and %d iterations\n",
+              world.rank(), largest / scale, du, dw, iterations_shared, iterations_one);
+  EXPECT_LT(largest / scale, 1e-9);
+  EXPECT_LT(du, 1e-9);
+  EXPECT_LT(dw, 1e-9);
+  EXPECT_EQ(iterations_shared, iterations_one);
+  const int np = static_cast<int>(grids->n_grid->grid().size());
+  EXPECT_EQ(shared.velocity().rows(), static_cast<Eigen::Index>(owned_block(3, world).size()) * np);
 }
 
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells,

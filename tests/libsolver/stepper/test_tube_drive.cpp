@@ -166,6 +166,7 @@ TEST(TubeDrive, DischargeHematocritOfACellAtAKnownVelocity) {
     s.velocity = Eigen::RowVector3d(0.1, -0.2, v).replicate(np, 1);
     s.tube_velocity = kTarget;
     s.mean_velocity = stepper.mean_velocity();
+    s.owners = owners_by_block(1, 1);  // one process: the cell is its own
     const StepReport r = stepper.advance(s);
     ASSERT_TRUE(r.discharge_hematocrit);
     EXPECT_NEAR(*r.discharge_hematocrit, tube_hematocrit * v / kTarget, 1e-12);
