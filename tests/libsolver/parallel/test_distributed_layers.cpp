@@ -880,10 +880,23 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
 }
 
+// A red cell of shape `x` whose Skalak membrane (E_s 12.4, C 200, bending 0.0669) is at rest
+// at `rest_scale` times the biconcave shape's size.
+Cell strained_red_cell(const SHCoeffs& x, double rest_scale, const std::shared_ptr<const CellGrids>& grids) {
+  SHSurface rest = make_biconcave(grids->order);
+  rest.coeffs().values() *= rest_scale;
+  Cell c;
+  c.shape = SHSurface(x);
+  c.membrane = std::make_shared<const Membrane>(rest, grids,
+                                                MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
+  return c;
+}
+
 // The step's traction on the ranks (halo_density.h): each rank computes its block's membranes,
 // and the step's operators (the layers, the layers at the wall) bring it only the traction rows
-// they read; it keeps its own cells' rows of the velocity and receives none. 16 cells up a tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each
-// strained (its membrane at rest at 0.95-0.97 of its size), lambda = 1, a mean velocity along
+// they read; it keeps its own cells' rows of the velocity and receives none. 16 cells up a
+// tube of D = 4.2 (as TheWallsOperatorsStayWithinTheStepHalo), each strained (its membrane at
+// rest at 0.95-0.97 of its size), lambda = 1, a mean velocity along
 // the tube: one step's solve on the ranks gives one process's velocity (to 1e-9: the sums in
 // another order, the same iterations), the traction's rows a rank holds are one process's bits
 // and the others zero, and where the grid is split some rank receives fewer rows than an
@@ -893,15 +906,8 @@ CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGri
                                              std::vector<std::vector<SectionQuadrature>> flux_sections = {}) {
   std::vector<Cell> cells;
   int k = 0;
-  for (const SHCoeffs& x : edge_on_column(grids->order, 16, 2.5)) {
-    SHSurface rest = make_biconcave(grids->order);
-    rest.coeffs().values() *= 0.95 + 0.01 * (k++ % 3);
-    Cell c;
-    c.shape = SHSurface(x);
-    c.membrane = std::make_shared<const Membrane>(rest, grids,
-                                                  MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
-    cells.push_back(std::move(c));
-  }
+  for (const SHCoeffs& x : edge_on_column(grids->order, 16, 2.5))
+    cells.push_back(strained_red_cell(x, 0.95 + 0.01 * (k++ % 3), grids));
   TubeSpec spec;
   spec.diameter = 4.2;
   spec.box = Eigen::Vector3d(5.0, 5.0, 48.0);
@@ -1017,16 +1023,8 @@ TEST(DistributedStepper, SectionsBringTheVelocityTheyRead) {
 CellStepper three_strained_cells_down_a_box(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks) {
   std::vector<SHCoeffs> shapes = three_cells(grids->order);
   std::reverse(shapes.begin(), shapes.end());  // z = 3.9, 2.95, 2.0
-  SHSurface rest = make_biconcave(grids->order);
-  rest.coeffs().values() *= 0.96;
   std::vector<Cell> cells;
-  for (const SHCoeffs& x : shapes) {
-    Cell c;
-    c.shape = SHSurface(x);
-    c.membrane = std::make_shared<const Membrane>(rest, grids,
-                                                  MembraneParameters{make_membrane_law("skalak", 12.4, 200.0), 0.0669});
-    cells.push_back(std::move(c));
-  }
+  for (const SHCoeffs& x : shapes) cells.push_back(strained_red_cell(x, 0.96, grids));
   CellStepperOptions o;
   o.dt = 2e-3;
   o.domain = LayerDomain{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 6.0)), 1e-8};
