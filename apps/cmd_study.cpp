@@ -152,23 +152,29 @@ std::vector<double> radial_hematocrit(const Case& c, const fs::path& run_dir, do
   return steady.empty() ? std::vector<double>{} : mean;
 }
 
-// Whether `dir` holds a finished run of `c`: its case.toml is the one this run would write up to
-// output.dir (a run made into another directory and moved or linked there counts) and its
-// diagnostics reach the last step (`steps`, or time.end).
-bool finished_run(const Case& c, const fs::path& dir, long steps) {
+// The last step of a run of `c` that `dir` holds, or 0 where it holds none: its case.toml is
+// the one this run would write up to output.dir (a run made into another directory and moved
+// or linked there counts) and its diagnostics have a row.
+long last_step_of_run(const Case& c, const fs::path& dir) {
   std::ifstream in(dir / "case.toml", std::ios::binary);
-  if (!in || !fs::is_regular_file(dir / "diagnostics.csv")) return false;
+  if (!in || !fs::is_regular_file(dir / "diagnostics.csv")) return 0;
   const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   Case here = c;
   try {
     here.output.dir = parse_case(written, dir / "case.toml").output.dir;
   } catch (const InputError&) {
-    return false;  // not a case file rbcflow wrote: run again
+    return 0;  // not a case file rbcflow wrote: run again
   }
-  if (written != case_toml(here)) return false;
+  if (written != case_toml(here)) return 0;
   const CsvTable d = read_csv(dir / "diagnostics.csv");
+  return d.rows.empty() ? 0 : std::stol(d.rows.back()[d.column("step")]);
+}
+
+// Whether `dir` holds a finished run of `c`: its diagnostics reach the last step (`steps`, or
+// time.end).
+bool finished_run(const Case& c, const fs::path& dir, long steps) {
   const long last = steps > 0 ? steps : std::max(1L, static_cast<long>(std::ceil(c.time.end / time_step(c) - 1e-9)));
-  return !d.rows.empty() && std::stol(d.rows.back()[d.column("step")]) == last;
+  return last_step_of_run(c, dir) == last;
 }
 
 // The last non-empty line of a log: a failed run's error message.
@@ -253,7 +259,8 @@ void finish_tube_study(StudyPlot& plot, const std::vector<double>& measured_hd, 
 
 void print_help() {
   std::printf(
-      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse] [--jobs J] [--quiet]\n"
+      "usage: rbcflow study CASE.toml... -o DIR [--steady-fraction F] [--steps N] [--reuse | --so-far] [--jobs J]\n"
+      "                     [--quiet]\n"
       "  Runs every case (straight tubes with cells, e.g. data/cases/fahraeus/quick/*.toml) into\n"
       "  DIR/<case name>/, averages the effective viscosity (45)-(46) over time >= F x the run's\n"
       "  end (default F = 0.5) with a batch-means standard error, and writes DIR/study.csv,\n"
@@ -267,6 +274,9 @@ void print_help() {
       "  --reuse takes a case's finished run from DIR/<case name>/ instead of running it again\n"
       "  (same case.toml, diagnostics to the last step): to add cases to a sweep, or to collect\n"
       "  runs made separately with rbcflow run CASE.toml --out DIR/<case name> (or moved there).\n"
+      "  --so-far runs nothing: it takes every case's run in DIR/<case name>/ (same case.toml) as\n"
+      "  far as it has gone, for a look at long runs still in progress (continued in pieces from\n"
+      "  their checkpoints); a case without a run there is an error.\n"
       "  --jobs J runs J cases at a time, each as its own rbcflow run process with its share of the\n"
       "  threads (OMP_NUM_THREADS / J) and its output in DIR/<case name>.log: faster than one case\n"
       "  after another when a case leaves cores idle (list the longest cases first). Once the last\n"
@@ -289,7 +299,7 @@ int run_study(Args& args) {
   }
   std::string out, fraction_text, steps_text, jobs_text;
   if (!args.option("-o", out)) throw UsageError("rbcflow study: missing -o DIR");
-  const bool quiet = args.flag("--quiet"), reuse = args.flag("--reuse");
+  const bool quiet = args.flag("--quiet"), reuse = args.flag("--reuse"), so_far = args.flag("--so-far");
   args.option("--steady-fraction", fraction_text);
   args.option("--steps", steps_text);
   args.option("--jobs", jobs_text);
@@ -298,6 +308,8 @@ int run_study(Args& args) {
   args.finish();
   const double fraction = fraction_text.empty() ? 0.5 : parse_number(fraction_text, "--steady-fraction", 0.0, 1.0);
   const long steps = steps_text.empty() ? 0 : static_cast<long>(parse_number(steps_text, "--steps", 1, 1e9));
+  if (so_far && (reuse || !steps_text.empty()))
+    throw UsageError("rbcflow study: --so-far takes the runs as they are; it goes with neither --reuse nor --steps");
   const double jobs_value = jobs_text.empty() ? 1 : parse_number(jobs_text, "--jobs", 1, 256);
   if (jobs_value != std::floor(jobs_value)) throw UsageError("rbcflow study: --jobs must be a whole number, got '" + jobs_text + "'");
   const int jobs = static_cast<int>(jobs_value);
@@ -320,7 +332,17 @@ int run_study(Args& args) {
   fs::create_directories(fs::path(out) / "renders");
 
   std::vector<bool> reused(cases.size());
-  for (std::size_t k = 0; k < cases.size(); ++k) reused[k] = reuse && finished_run(cases[k], cases[k].output.dir, steps);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (so_far && last_step_of_run(cases[k], cases[k].output.dir) == 0) {
+      const fs::path& dir = cases[k].output.dir;
+      throw InputError(case_files[k].string() + ": --so-far: " + dir.string() + " holds no run of this case (" +
+                       (fs::is_regular_file(dir / "case.toml") && fs::is_regular_file(dir / "diagnostics.csv")
+                            ? "its case.toml is another case's"
+                            : "no case.toml and diagnostics.csv") +
+                       ")");
+    }
+    reused[k] = so_far || (reuse && finished_run(cases[k], cases[k].output.dir, steps));
+  }
   // With --jobs, the runs first, side by side; their failures are collected below.
   std::vector<std::string> child_failure(cases.size());
   if (jobs > 1) run_side_by_side(cases, case_files, reused, steps_text, fs::path(out), jobs, quiet, child_failure);
@@ -343,7 +365,12 @@ int run_study(Args& args) {
     if (!quiet && jobs == 1) std::printf("== %s (%zu of %zu)\n", stem.c_str(), k + 1, cases.size());
     std::fflush(stdout);
     if (reused[k]) {
-      if (!quiet) std::printf("reusing the finished run in %s\n", c.output.dir.c_str());
+      if (!quiet && so_far) {
+        std::printf("taking the run in %s as far as it has gone (step %ld)\n", c.output.dir.c_str(),
+                    last_step_of_run(c, c.output.dir));
+      } else if (!quiet) {
+        std::printf("reusing the finished run in %s\n", c.output.dir.c_str());
+      }
     } else if (!child_failure[k].empty()) {
       std::fprintf(stderr, "rbcflow study: %s failed, left out of the study: %s\n", stem.c_str(), child_failure[k].c_str());
       failed.push_back(stem);
