@@ -17,16 +17,22 @@
 // The next iterate is a combination of the F(x_i), so its image under any linear map L is the
 // same combination of the L F(x_i): given those (a solve's by-product: GMRES returns A x for
 // its x), next() returns L x_{k+1} without applying L.
+//
+// Iterates split by rows over ranks (each rank its rows, as GMRES's vectors, parallel/owned_rows.h)
+// mix alike on every rank when `sum_parts` sums each rank's partial inner products over them
+// (SplitInnerProducts::sum): the least-squares problem is then the whole vectors'.
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <deque>
+#include <functional>
 #include <stdexcept>
 
 namespace rbcflow {
 
 class AndersonMixing {
  public:
-  explicit AndersonMixing(int depth) : depth_(depth) {
+  explicit AndersonMixing(int depth, std::function<void(Eigen::VectorXd&)> sum_parts = {})
+      : depth_(depth), sum_parts_(std::move(sum_parts)) {
     if (depth < 0) throw std::invalid_argument("AndersonMixing: the depth must be >= 0");
   }
 
@@ -65,12 +71,17 @@ class AndersonMixing {
     Eigen::MatrixXd next = f;
     if (with_images_) *next_image = previous_image_;
     if (m > 0) {
-      Eigen::MatrixXd gram(m, m);
-      Eigen::VectorXd rhs(m);
-      for (int i = 0; i < m; ++i) {
-        rhs[i] = dot(dG_[i], g);
-        for (int j = 0; j <= i; ++j) gram(i, j) = gram(j, i) = dot(dG_[i], dG_[j]);
+      // The normal equations' right-hand side and lower triangle, one vector of inner products.
+      Eigen::VectorXd products(m + m * (m + 1) / 2);
+      for (int i = 0, k = m; i < m; ++i) {
+        products[i] = dot(dG_[i], g);
+        for (int j = 0; j <= i; ++j) products[k++] = dot(dG_[i], dG_[j]);
       }
+      if (sum_parts_) sum_parts_(products);
+      Eigen::MatrixXd gram(m, m);
+      const Eigen::VectorXd rhs = products.head(m);
+      for (int i = 0, k = m; i < m; ++i)
+        for (int j = 0; j <= i; ++j) gram(i, j) = gram(j, i) = products[k++];
       const Eigen::VectorXd gamma = gram.completeOrthogonalDecomposition().solve(rhs);
       for (int i = 0; i < m; ++i) next -= gamma[i] * dF_[i];
       if (with_images_)
@@ -84,6 +95,7 @@ class AndersonMixing {
   static double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
 
   int depth_;
+  std::function<void(Eigen::VectorXd&)> sum_parts_;  // empty: the iterates are whole here
   bool with_images_ = false;
   std::deque<Eigen::MatrixXd> dG_, dF_, dL_;  // dL_: differences of the images L F(x_i)
   Eigen::MatrixXd previous_g_, previous_f_, previous_image_;

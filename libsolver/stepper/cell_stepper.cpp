@@ -375,28 +375,44 @@ FlowSolution CellStepper::solve() const {
     // manner of Eisenstat & Walker's forcing terms), the last at the solves' own tolerances.
     // Each U is a combination of the solved velocities, so the mixing also combines their
     // images under (10)'s operator, which GMRES returns: a sweep's solve starts from U without
-    // a product. The sweeps (the first step only) hold every node's rows of U, as (12) reads
-    // them at the wall.
+    // a product. The sweeps (the first step only) hold, as GMRES does, this rank's own cells'
+    // rows of U, their history and their images, and mix them with inner products summed over
+    // the ranks; (12) reads U at the rows of the wall's halo too, brought from their owners.
     if (start_sweeps) {
-      const OwnedRows by_owners(owners.first, np, options_.domain.ranks);
-      auto every_row = [&](const Eigen::MatrixXd& mine) {
-        return options_.domain.ranks.size() == 1 ? mine : by_owners.gather(mine);
+      const Communicator& ranks = options_.domain.ranks;
+      OwnedRows by_owners(owners.first, np, ranks);
+      if (ranks.size() > 1) {
+        const int r = ranks.rank();
+        std::vector<int> read;
+        for (int k = owners.first[r]; k < owners.first[r + 1]; ++k) read.push_back(k);
+        for (int k : layers->halo_with(at_wall->slabs())) read.push_back(k);
+        std::vector<int> rows;
+        for (int k : read)
+          for (int i = 0; i < np; ++i) rows.push_back(k * np + i);
+        std::sort(rows.begin(), rows.end());
+        by_owners.read_only(rows);
+      }
+      auto at_wall_rows = [&](const Eigen::MatrixXd& mine) {
+        return ranks.size() == 1 ? mine : by_owners.gather_read(mine);
       };
-      AndersonMixing mixing(kStartSweepDepth);
-      Eigen::MatrixXd U = Eigen::MatrixXd::Zero(nc * np, 3);  // the U of the first solve's (12)
-      Eigen::MatrixXd u = every_row(s.velocity);
+      const SplitInnerProducts split{ranks};
+      auto norm = [&](const Eigen::MatrixXd& mine) {
+        return split.norm(Eigen::Map<const Eigen::VectorXd>(mine.data(), mine.size()));
+      };
+      AndersonMixing mixing(kStartSweepDepth, [&](Eigen::VectorXd& parts) { split.sum(parts); });
+      Eigen::MatrixXd U = Eigen::MatrixXd::Zero(s.velocity.rows(), 3);  // the U of the first solve's (12)
+      Eigen::MatrixXd u = s.velocity;
       const double settled = std::max(kStartSweepTolerance, 10 * options_.gmres_tolerance);
       const double finest = std::min(options_.gmres_tolerance, options_.wall_solve.tolerance);
       for (int sweep = 0; sweep < kMaxStartSweeps; ++sweep) {
-        sweep_tolerance = kStartSweepForcing * (u - U).norm() / u.norm();
+        sweep_tolerance = kStartSweepForcing * norm(u - U) / norm(u);
         if (sweep_tolerance <= finest) sweep_tolerance = 0;
-        image = every_row(image);
         U = mixing.next(U, u, image, image);
-        solve_wall(U, s.wall_force);
+        solve_wall(at_wall_rows(U), s.wall_force);
         solve_cells(U, &image);
-        u = every_row(s.velocity);
+        u = s.velocity;
         s.start_sweeps = sweep + 1;
-        if ((u - U).norm() <= settled * U.norm() && sweep_tolerance == 0) break;
+        if (norm(u - U) <= settled * norm(U) && sweep_tolerance == 0) break;
       }
       sweep_tolerance = 0;
     }

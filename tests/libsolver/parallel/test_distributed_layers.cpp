@@ -10,12 +10,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
+#include <random>
 #include <stdexcept>
 
 #include "geometry/surface/reference_shapes.h"
 #include "geometry/vessel/vessel.h"
 #include "geometry/vessel/vessel_branch.h"
+#include "libsolver/linear/anderson_mixing.h"
 #include "libsolver/wall/wall_solver.h"
 #include "libsolver/operators/cell_layers.h"
 #include "libsolver/operators/cell_layers_at_points.h"
@@ -241,6 +244,48 @@ TEST(OwnedRows, SumsAndGathersByTheOwnersRows) {
     EXPECT_EQ(rows.gather(rows.mine(all)), all);
   }
   EXPECT_THROW(OwnedRows(2, 4, world).gather(Eigen::MatrixXd::Zero(3, 3)), std::invalid_argument);
+}
+
+// Anderson mixing (linear/anderson_mixing.h) of iterates split by rows over the ranks, as the
+// stepper's start sweeps hold them (each rank its own cells' rows): with the ranks' partial
+// inner products summed (sum_parts) every rank's rows follow the mixing of the whole vectors
+// on one process, to rounding (the sums' order); left unsummed, each rank's least squares
+// would be its own rows' (a different iteration, checked on several ranks). The map: an affine
+// contraction F(x) = A x + c, mildly non-normal, the same on every rank.
+TEST(AndersonMixing, SplitOverTheRanksMixesAsWhole) {
+  const Communicator world = Communicator::world();
+  const int cells = 7, np = 5, n = cells * np;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  Eigen::MatrixXd A(3 * n, 3 * n);
+  for (Eigen::Index i = 0; i < A.size(); ++i) A.data()[i] = 0.9 * g(rng) / std::sqrt(3.0 * n);
+  const Eigen::VectorXd c = Eigen::VectorXd::NullaryExpr(3 * n, [&] { return g(rng); });
+  auto F = [&](const Eigen::MatrixXd& x) {  // every row
+    const Eigen::VectorXd y = A * x.reshaped() + c;
+    return Eigen::MatrixXd(y.reshaped(n, 3));
+  };
+  const OwnedRows rows(cells, np, world);
+  auto sweeps = [&](bool summed) {  // 8 sweeps from 0; this rank's rows of the last iterate
+    AndersonMixing whole(4), split(4, summed ? std::function<void(Eigen::VectorXd&)>(
+                                                   [&](Eigen::VectorXd& parts) { world.sum(parts); })
+                                             : std::function<void(Eigen::VectorXd&)>());
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 3), mine = rows.mine(x);
+    for (int sweep = 0; sweep < 8; ++sweep) {
+      x = whole.next(x, F(x));
+      mine = split.next(mine, rows.mine(F(rows.gather(mine))));
+    }
+    return std::pair{rows.mine(x), mine};
+  };
+  const auto [whole, split] = sweeps(true);
+  const double scale = world.min(-whole.cwiseAbs().maxCoeff());  // minus the largest entry of all
+  const double off = -world.min(-(split - whole).cwiseAbs().maxCoeff());
+  std::printf("Anderson mixing split over %d ranks: largest difference %.2e of entries up to %.2f\n", world.size(), off,
+              -scale);
+  EXPECT_LT(off, 1e-12 * -scale);
+  if (world.size() > 1) {
+    const auto [whole_again, unsummed] = sweeps(false);
+    EXPECT_GT(-world.min(-(unsummed - whole_again).cwiseAbs().maxCoeff()), 1e-6 * -scale);
+  }
 }
 
 // The rows a rank reads (read_only) come from their owners, and only they; a sum brings each
