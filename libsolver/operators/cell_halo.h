@@ -6,7 +6,8 @@
 //   - their real-space Ewald sums reach the nodes within the cutoff r_c of an owned node
 //     (nearest periodic image, section 5.3);
 //   - their nearly-singular corrections reach the nodes within an owned cell's near distance
-//     of its surface (section 5.4);
+//     of its surface (section 5.4), which lies within the cell's mesh size h of its nodes'
+//     sphere;
 //   - the smooth part, spread by every node whose B-spline stencil reaches the rank's planes
 //     and interpolated at those nodes, reads and reaches only them (section 5.2).
 // The halo is taken from bounding spheres (every node of a cell within `radius` of `center`),
@@ -46,7 +47,7 @@ bool reaches_slab(const CellSphere& sphere, const SlabPlanes& slab, const Period
 
 // The halo of the cells `owned` (of spheres.size() cells, stacked in owner order): the other
 // cells whose spheres come within `reach` (the largest of the real-space cutoffs and the near
-// distances) of an owned cell's in the box, or that reach one of `slabs` (the rank's planes
+// distances plus h) of an owned cell's in the box, or that reach one of `slabs` (the rank's planes
 // of each grid its products use); ascending. Free space (no box) or no slabs: every cell not
 // owned.
 std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange owned, const std::optional<PeriodicBox>& box,

@@ -266,7 +266,11 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen
 }
 
 void CellLayers::find_halo_extent(const SpmeGrid* single_grid, const SpmeGrid* double_grid) {
-  for (int c = owned_.begin; c < owned_.end; ++c) halo_reach_ = std::max(halo_reach_, cells_[c]->near_distance());
+  // A nearly-singular target lies within the near distance of the continuous surface, which
+  // between the nodes can reach beyond their bounding sphere (cell_halo.h's spheres), by less
+  // than the mesh size h (test_cell_halo.cpp): the reach adds h.
+  for (int c = owned_.begin; c < owned_.end; ++c)
+    halo_reach_ = std::max(halo_reach_, cells_[c]->near_distance() + cells_[c]->mesh_size());
   for (const SpmeGrid* grid : {single_grid, double_grid}) {
     if (!grid) continue;
     halo_reach_ = std::max(halo_reach_, grid->parameters().cutoff);

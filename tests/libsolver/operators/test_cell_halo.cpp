@@ -3,10 +3,18 @@
 // grid planes through their B-spline stencils (planes floor(u) - p + 1 .. floor(u) of a node at
 // grid coordinate u, spme/spme_stencils.cpp). That the halo holds every cell a rank's parts of
 // the layer products reach is tested on the products themselves (test_distributed_layers.cpp).
+// The reach's margin for nearly-singular targets rests on the surface between the nodes lying
+// within the mesh size h of the nodes' sphere, checked on the continuous surface here.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
+#include "geometry/surface/cell_grids.h"
+#include "geometry/surface/reference_shapes.h"
+#include "geometry/surface/sh_surface.h"
 #include "libsolver/operators/cell_halo.h"
 
 using namespace rbcflow;
@@ -24,6 +32,33 @@ TEST(CellHalo, BoundingSphereHoldsEveryNode) {
   EXPECT_NEAR((s.center - Eigen::Vector3d(0.5, 0.5, 0.5)).norm(), 0.0, 1e-15);
   EXPECT_NEAR(s.radius, std::sqrt(1.5 * 1.5 + 0.25 + 0.25), 1e-15);  // (2, 0, 0) from the mean
   EXPECT_THROW(bounding_sphere(Eigen::MatrixXd(0, 3)), std::invalid_argument);
+}
+
+// A cell's nearly-singular targets are those within its near distance of the continuous
+// surface (near_targets.cpp), whose points between the nodes can lie beyond the nodes' bounding
+// sphere: CellLayers' reach adds the mesh size h = sqrt(A) / N (singular_quadrature.h) to the
+// near distance. The surface sampled on a grid of order 64 (the coefficients zero-padded) lies
+// within h of the sphere, and beyond the sphere itself (the margin is needed) for red cells and
+// an ellipsoid tilted so that their rims fall between the nodes of N = 8, 12 and 16.
+TEST(CellHalo, SurfaceWithinTheNodesSphereGrownByTheMeshSize) {
+  const auto fine = CellGrids::make(64, 64);
+  const Eigen::Matrix3d tilt =
+      (Eigen::AngleAxisd(0.37, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.81, Eigen::Vector3d::UnitY())).matrix();
+  for (const int N : {8, 12, 16}) {
+    const auto grids = CellGrids::make(N, N);
+    SHSurface red = make_biconcave(N), ellipsoid = make_ellipsoid(N, Eigen::Vector3d(1.4, 1.0, 0.5));
+    for (SHSurface* s : {&red, &ellipsoid}) s->rotate(tilt);
+    for (const SHSurface* s : {&red, &ellipsoid}) {
+      const CellSphere sphere = bounding_sphere(grids->n_grid->synthesize(s->coeffs()));
+      const Eigen::MatrixXd surface = fine->n_grid->synthesize(s->coeffs().resampled(64));
+      const double farthest = (surface.rowwise() - sphere.center.transpose()).rowwise().norm().maxCoeff();
+      const double h = std::sqrt(surface_area(s->geometry(*grids->n_grid))) / N;
+      std::printf("N = %d: surface %.2e beyond the nodes' sphere (radius %.3f), h = %.3f\n", N,
+                  farthest - sphere.radius, sphere.radius, h);
+      EXPECT_GT(farthest, sphere.radius);
+      EXPECT_LT(farthest, sphere.radius + h);
+    }
+  }
 }
 
 TEST(CellHalo, SpheresWithinReachAcrossThePeriodicBox) {
