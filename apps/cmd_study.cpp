@@ -326,23 +326,22 @@ int run_study(Args& args) {
     if (!c.cells) throw case_error(c, "cells", "a study needs cells");
     c.output.dir = fs::path(out) / f.stem();
     check_output_dir(c, c.output.dir);
+    if (so_far && last_step_of_run(c, c.output.dir) == 0) {  // before anything is started or written
+      const fs::path& dir = c.output.dir;
+      throw InputError(f.string() + ": --so-far: " + dir.string() + " holds no run of this case (" +
+                       (fs::is_regular_file(dir / "case.toml") && fs::is_regular_file(dir / "diagnostics.csv")
+                            ? "its case.toml is another case's"
+                            : "no case.toml and diagnostics.csv") +
+                       ")");
+    }
     cases.push_back(std::move(c));
   }
   ensure_display();  // renders and the plot
   fs::create_directories(fs::path(out) / "renders");
 
   std::vector<bool> reused(cases.size());
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    if (so_far && last_step_of_run(cases[k], cases[k].output.dir) == 0) {
-      const fs::path& dir = cases[k].output.dir;
-      throw InputError(case_files[k].string() + ": --so-far: " + dir.string() + " holds no run of this case (" +
-                       (fs::is_regular_file(dir / "case.toml") && fs::is_regular_file(dir / "diagnostics.csv")
-                            ? "its case.toml is another case's"
-                            : "no case.toml and diagnostics.csv") +
-                       ")");
-    }
+  for (std::size_t k = 0; k < cases.size(); ++k)
     reused[k] = so_far || (reuse && finished_run(cases[k], cases[k].output.dir, steps));
-  }
   // With --jobs, the runs first, side by side; their failures are collected below.
   std::vector<std::string> child_failure(cases.size());
   if (jobs > 1) run_side_by_side(cases, case_files, reused, steps_text, fs::path(out), jobs, quiet, child_failure);
