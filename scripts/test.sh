@@ -3,7 +3,8 @@
 # Release with warnings as errors (configured as scripts/quickstart.sh does, so the two share
 # one build), run CTest (everything but the on-demand `slow` label), then build with
 # AddressSanitizer + UBSan and run the unit tests again (not the end-to-end runs of the command
-# line, label end_to_end, which take minutes there).
+# line, label end_to_end, which take minutes there, nor the distributed tests again on 3 ranks,
+# label ranks_variant, which the 2-rank entry checks there).
 #   scripts/test.sh            default suite
 #   RBCFLOW_TEST_LABELS=slow scripts/test.sh      also the long validations (hours)
 set -euo pipefail
@@ -34,6 +35,6 @@ if [ "${RBCFLOW_SKIP_SANITIZERS:-0}" != "1" ]; then
   (
     export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp"
     export UBSAN_OPTIONS=print_stacktrace=1
-    run_ctest --test-dir build-asan --output-on-failure --no-tests=error -j "$jobs" -L unit -LE end_to_end
+    run_ctest --test-dir build-asan --output-on-failure --no-tests=error -j "$jobs" -L unit -LE "end_to_end|ranks_variant"
   )
 fi

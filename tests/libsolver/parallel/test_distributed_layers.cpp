@@ -973,11 +973,6 @@ CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGri
 TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   const Communicator world = Communicator::world();
   if (world.size() == 1) GTEST_SKIP() << "one process: nothing is brought";
-#if defined(__SANITIZE_ADDRESS__)
-  // 303-334 s a binary under AddressSanitizer on 2 cores (20 s in Release): the sanitizer pass
-  // checks HaloDensity's exchanges on 2 ranks; the Release pass runs 2 and 3.
-  if (world.size() > 2) GTEST_SKIP() << "too slow under AddressSanitizer; run on 2 ranks and in the Release pass";
-#endif
   const auto grids = CellGrids::make(8, 16);
   const CellStepper one = sixteen_strained_cells_in_a_tube(grids, {}), shared = sixteen_strained_cells_in_a_tube(grids, world);
   FlowSolution a = one.solve(), b = shared.solve();
