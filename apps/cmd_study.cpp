@@ -286,8 +286,9 @@ void print_help() {
       "  Bifurcation cases (all of one kind) make a phase-separation study instead: each run's\n"
       "  daughter alpha (branch 1) share of the parent's blood flow and of its red cells (passages\n"
       "  through the daughters' mid-sections, branches.csv) over the steady part, with a binomial\n"
-      "  standard error, against the law of Pries et al. 2005 at the run's diameters and the\n"
-      "  parent's measured discharge hematocrit: DIR/phase_separation.csv and .png.\n");
+      "  standard error and Wilson 68%% interval (the plot's bars), against the law of Pries et\n"
+      "  al. 2005 at the run's diameters and the parent's measured discharge hematocrit:\n"
+      "  DIR/phase_separation.csv and .png.\n");
 }
 
 }  // namespace
@@ -436,7 +437,8 @@ int run_study(Args& args) {
     }
     plot.diameter.push_back(d_um);
     plot.value.push_back(a.mean);
-    plot.error.push_back(a.standard_error);
+    plot.bar_low.push_back(a.mean - a.standard_error);
+    plot.bar_high.push_back(a.mean + a.standard_error);
     measured_hd.push_back(a.discharge_hematocrit ? pries_relative_viscosity(d_um, *a.discharge_hematocrit) : -1.0);
     hematocrit_sum += ht;
     std::printf("%s: D = %.2f um, H_T = %.3f (H_D = %.3f): mu_eff = %.4f +- %.4f over t in [%.4g, %.4g] (%ld rows), "

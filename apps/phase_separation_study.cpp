@@ -30,7 +30,8 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
                  std::vector<std::string>{"case", "parent_um", "alpha_um", "beta_um", "steady_from", "time",
                                           "parent_flow", "alpha_flow", "beta_flow", "blood_fraction",
                                           "parent_passages", "alpha_passages", "beta_passages", "cell_fraction",
-                                          "cell_fraction_stderr", "discharge_hematocrit", "pries_2005"});
+                                          "cell_fraction_stderr", "cell_fraction_low", "cell_fraction_high",
+                                          "discharge_hematocrit", "pries_2005"});
   }
   const PhaseSeparationPoint p = phase_separation_point(c.output.dir / "branches.csv", steady_fraction);
   const PhysicalUnits si(c.units);
@@ -49,13 +50,15 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
                csv_number(p.to_time), csv_number(p.parent_flow), csv_number(p.alpha_flow), csv_number(p.beta_flow),
                csv_number(p.blood_fraction), std::to_string(p.parent_passages), std::to_string(p.alpha_passages),
                std::to_string(p.beta_passages), csv_number(p.cell_fraction), csv_number(p.cell_fraction_stderr),
+               csv_number(p.cell_fraction_low), csv_number(p.cell_fraction_high),
                csv_number(hd), csv_number(law)});
   if (!quiet_) {
     std::printf("%s: parent %.3g um, daughters %.3g and %.3g um; over t in [%.4g, %.4g] alpha takes %.3f of the blood",
                 name.c_str(), parent, alpha, beta, p.from_time, p.to_time, p.blood_fraction);
     if (p.cell_fraction) {
-      std::printf(" and %.3f +- %.3f of the cells (%ld passages)", *p.cell_fraction, *p.cell_fraction_stderr,
-                  p.alpha_passages + p.beta_passages);
+      std::printf(" and %.3f +- %.3f of the cells (%ld passages; Wilson 68%% interval %.3f-%.3f)", *p.cell_fraction,
+                  *p.cell_fraction_stderr, p.alpha_passages + p.beta_passages, *p.cell_fraction_low,
+                  *p.cell_fraction_high);
       if (law) std::printf("; Pries 2005 at the parent's H_D %.3f: %.3f", *hd, *law);
     } else {
       std::printf(" (no cell passed either daughter in that time)");
@@ -65,7 +68,8 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
   if (p.cell_fraction) {
     plot_.diameter.push_back(p.blood_fraction);
     plot_.value.push_back(*p.cell_fraction);
-    plot_.error.push_back(*p.cell_fraction_stderr);
+    plot_.bar_low.push_back(*p.cell_fraction_low);
+    plot_.bar_high.push_back(*p.cell_fraction_high);
     laws_.push_back(law.value_or(-1));
   }
 }

@@ -164,8 +164,20 @@ PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, do
     const double f = static_cast<double>(p.alpha_passages) / static_cast<double>(n);
     p.cell_fraction = f;
     p.cell_fraction_stderr = std::sqrt(f * (1 - f) / static_cast<double>(n));
+    const ProportionInterval wilson = wilson_interval(p.alpha_passages, n, 1.0);
+    p.cell_fraction_low = wilson.low;
+    p.cell_fraction_high = wilson.high;
   }
   return p;
+}
+
+ProportionInterval wilson_interval(long successes, long trials, double z) {
+  if (trials <= 0 || successes < 0 || successes > trials || !(z > 0))
+    throw std::invalid_argument("wilson_interval: needs 0 <= successes <= trials, trials > 0, z > 0");
+  const double k = static_cast<double>(successes), n = static_cast<double>(trials), z2 = z * z;
+  const double centre = (k + 0.5 * z2) / (n + z2);
+  const double half = z / (n + z2) * std::sqrt(k * (n - k) / n + 0.25 * z2);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
 }  // namespace rbcflow::cli

@@ -42,9 +42,20 @@ struct PhaseSeparationPoint {
   double blood_fraction = 0;                              // alpha / parent
   long parent_passages = 0, alpha_passages = 0, beta_passages = 0;
   // alpha / (alpha + beta) passages, and its binomial standard error sqrt(f (1 - f) / n): each
-  // cell reaching the split goes one way or the other; empty without passages.
-  std::optional<double> cell_fraction, cell_fraction_stderr;
+  // cell reaching the split goes one way or the other; empty without passages. low, high: its
+  // Wilson score interval at z = 1 (the coverage of +- one standard error, 68%), which stays
+  // honest at a handful of passages with f near 0 or 1, where the standard error shrinks to 0.
+  std::optional<double> cell_fraction, cell_fraction_stderr, cell_fraction_low, cell_fraction_high;
 };
+
+// The Wilson score interval of a binomial proportion: `successes` of `trials` (> 0), at z
+// standard normal deviates (E. B. Wilson, J. Am. Stat. Assoc. 22 (1927) 209; R. G. Newcombe,
+// Stat. Med. 17 (1998) 857, method 3): the p with |k - n p| <= z sqrt(n p (1 - p)),
+//   (k + z^2 / 2) / (n + z^2) -+ z / (n + z^2) sqrt(k (n - k) / n + z^2 / 4).
+struct ProportionInterval {
+  double low = 0, high = 0;
+};
+ProportionInterval wilson_interval(long successes, long trials, double z);
 
 // Throws std::runtime_error naming the file when it has not three branches or no rows in the
 // steady part.

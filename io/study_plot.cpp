@@ -94,9 +94,8 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
   }
   // Error bars as short vertical lines, then the points.
   for (std::size_t i = 0; i < s.diameter.size(); ++i) {
-    if (!(s.error[i] > 0)) continue;
-    vtkPlot* bar = add(chart, vtkChart::LINE, "", {s.diameter[i], s.diameter[i]},
-                       {s.value[i] - s.error[i], s.value[i] + s.error[i]}, blue, 2.0f);
+    if (!(s.bar_high[i] > s.bar_low[i])) continue;
+    vtkPlot* bar = add(chart, vtkChart::LINE, "", {s.diameter[i], s.diameter[i]}, {s.bar_low[i], s.bar_high[i]}, blue, 2.0f);
     bar->SetLegendVisibility(false);
   }
   if (!s.reference_at_points.empty()) {
@@ -107,9 +106,8 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
   // Headroom above the data and the band for the legend (top right), so that it hides no point.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < s.diameter.size(); ++i) {
-    const double e = s.error[i] > 0 ? s.error[i] : 0.0;
-    lo = std::min(lo, s.value[i] - e);
-    hi = std::max(hi, s.value[i] + e);
+    lo = std::min({lo, s.value[i], s.bar_low[i]});
+    hi = std::max({hi, s.value[i], s.bar_high[i]});
   }
   for (double v : s.reference_at_points) lo = std::min(lo, v), hi = std::max(hi, v);
   for (double v : s.reference) lo = std::min(lo, v), hi = std::max(hi, v);

@@ -12,7 +12,8 @@ namespace rbcflow {
 struct StudyPlot {
   std::string title;
   std::string x_title = "tube diameter D (um)", y_title = "effective viscosity mu_eff / mu";
-  std::vector<double> diameter, value, error;  // the measured points (error: +- one bar)
+  std::vector<double> diameter, value;  // the measured points
+  std::vector<double> bar_low, bar_high;  // each point's error bar, its ends (equal: no bar)
   std::vector<double> reference_diameter, reference, reference_low, reference_high;  // low, high: a +-10% band, or none
   std::string reference_name = "reference";
   // The reference at each point's own condition (the Pries law at the run's measured H_D),

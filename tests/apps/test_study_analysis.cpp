@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "apps/study_analysis.h"
@@ -181,6 +182,35 @@ TEST(StudyAnalysis, PhaseSeparationPointFromBranches) {
   EXPECT_DOUBLE_EQ(*p.cell_fraction, f);
   EXPECT_NEAR(*p.cell_fraction_stderr, std::sqrt(f * (1 - f) / 13), 1e-15);
   EXPECT_NEAR(f, 2.0 / 3, 0.06);
+  const cli::ProportionInterval wilson = cli::wilson_interval(p.alpha_passages, 13, 1.0);
+  EXPECT_EQ(*p.cell_fraction_low, wilson.low);
+  EXPECT_EQ(*p.cell_fraction_high, wilson.high);
+  EXPECT_LT(wilson.low, f);
+  EXPECT_GT(wilson.high, f);
+}
+
+// The Wilson score interval against the published 95% intervals (z = 1.959964) of Newcombe's
+// examples (Stat. Med. 17 (1998) 857, table I, method 3), given to 4 decimals: 81/263, 15/148,
+// 0/20, 1/29. Its ends are where |k - n p| = z sqrt(n p (1 - p)) (checked to rounding at
+// z = 1), and unlike the standard error it does not vanish at 0 or all successes.
+TEST(StudyAnalysis, WilsonIntervalMatchesNewcombesTable) {
+  struct Row {
+    long k, n;
+    double low, high;
+  };
+  for (const Row& r : {Row{81, 263, 0.2553, 0.3662}, Row{15, 148, 0.0624, 0.1605}, Row{0, 20, 0.0, 0.1611},
+                       Row{1, 29, 0.0061, 0.1718}}) {
+    const cli::ProportionInterval w = cli::wilson_interval(r.k, r.n, 1.959964);
+    EXPECT_NEAR(w.low, r.low, 5e-5) << r.k << "/" << r.n;
+    EXPECT_NEAR(w.high, r.high, 5e-5) << r.k << "/" << r.n;
+  }
+  const long k = 16, n = 17;
+  const cli::ProportionInterval w = cli::wilson_interval(k, n, 1.0);
+  for (double p : {w.low, w.high}) EXPECT_NEAR(std::abs(k - n * p), std::sqrt(n * p * (1 - p)), 1e-12);
+  EXPECT_DOUBLE_EQ(cli::wilson_interval(17, 17, 1.0).high, 1.0);
+  EXPECT_GT(1.0 - cli::wilson_interval(17, 17, 1.0).low, 0.05);  // 17 of 17: the standard error is 0
+  EXPECT_THROW(cli::wilson_interval(3, 2, 1.0), std::invalid_argument);
+  EXPECT_THROW(cli::wilson_interval(0, 0, 1.0), std::invalid_argument);
 }
 
 // The flows are time means: a run restarted at half the time step (docs/running.md) writes
