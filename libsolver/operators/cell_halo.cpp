@@ -8,9 +8,13 @@ namespace rbcflow {
 CellSphere bounding_sphere(const Eigen::MatrixXd& nodes) {
   if (nodes.rows() == 0 || nodes.cols() != 3) throw std::invalid_argument("bounding_sphere: no nodes");
   CellSphere s;
-  s.center = nodes.colwise().mean().transpose();
+  for (int k = 0; k < 3; ++k) s.center[k] = nodes.col(k).mean();
   s.radius = (nodes.rowwise() - s.center.transpose()).rowwise().norm().maxCoeff();
   return s;
+}
+
+CellSphere cell_sphere(const SHCoeffs& shape, const CellGrids& grids) {
+  return bounding_sphere(grids.n_grid->synthesize(shape));
 }
 
 std::optional<SlabPlanes> rank_slab(const SpmeGrid& grid) {

@@ -18,6 +18,8 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/sph/sph_coeffs.h"
+#include "geometry/surface/cell_grids.h"
 #include "libsolver/common/periodic_box.h"
 #include "libsolver/parallel/ownership.h"
 #include "libsolver/spme/spme_grid.h"
@@ -29,8 +31,12 @@ struct CellSphere {
   double radius = 0.0;
 };
 
-// The sphere about the mean of the nodes (rows x 3) through the farthest node.
+// The sphere about the mean of the nodes (rows x 3; each coordinate's mean, column by column)
+// through the farthest node.
 CellSphere bounding_sphere(const Eigen::MatrixXd& nodes);
+// The sphere of a cell's nodes on the N grid: what a rank that holds its shape tells the others
+// of it (cell_owners.h), 4 numbers instead of the shape's coefficients.
+CellSphere cell_sphere(const SHCoeffs& shape, const CellGrids& grids);
 
 // One rank's planes of a grid split into slabs: planes [first_plane, first_plane + planes) of
 // the grid's `size` planes along box axis `axis`, B-splines of order `order`.

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 
 #include "libsolver/parallel/ownership.h"
+#include "libsolver/parallel/share_blocks.h"
 
 namespace rbcflow {
 
@@ -62,17 +64,26 @@ CellOwners owners_along(const std::vector<double>& coordinate, double length, in
   return o;
 }
 
-CellOwners cell_owners(const std::vector<SHCoeffs>& cells, const CellGrids& grids, const LayerDomain& domain,
+CellOwners cell_owners(const std::vector<CellSphere>& spheres, long nodes_per_cell, const LayerDomain& domain,
                        bool with_double_layer, SpmeGridCache* grid_cache) {
-  const int nc = static_cast<int>(cells.size()), p = domain.ranks.size();
+  const int nc = static_cast<int>(spheres.size()), p = domain.ranks.size();
   if (p == 1 || !domain.box || nc == 0) return owners_by_block(nc, p);
-  const long nodes = static_cast<long>(nc) * grids.n_grid->grid().size();
-  const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(domain, nodes, with_double_layer, grid_cache);
+  const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(domain, nc * nodes_per_cell, with_double_layer, grid_cache);
   if (!grid->distributed()) return owners_by_block(nc, p);
   const int axis = grid->axis(0);
   std::vector<double> coordinate(static_cast<std::size_t>(nc));
-  for (int c = 0; c < nc; ++c) coordinate[static_cast<std::size_t>(c)] = grids.n_grid->synthesize(cells[c]).col(axis).mean();
+  for (int c = 0; c < nc; ++c) coordinate[static_cast<std::size_t>(c)] = spheres[static_cast<std::size_t>(c)].center[axis];
   return owners_along(coordinate, domain.box->length(axis), p);
+}
+
+void share_spheres(std::vector<CellSphere>& spheres, const CellOwners& holders, const Communicator& ranks) {
+  if (holders.order.size() != spheres.size()) throw std::invalid_argument("share_spheres: not one sphere a cell");
+  std::vector<std::vector<std::span<double>>> items;  // in the holders' order: their blocks are share_blocks'
+  for (const int c : holders.order) {
+    CellSphere& s = spheres[static_cast<std::size_t>(c)];
+    items.push_back({std::span<double>(s.center.data(), 3), std::span<double>(&s.radius, 1)});
+  }
+  share_blocks(ranks, items);
 }
 
 }  // namespace rbcflow

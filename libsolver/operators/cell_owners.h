@@ -44,10 +44,17 @@ CellOwners owners_by_block(int cells, int ranks);
 // rank 0 the lowest. Throws std::invalid_argument for a coordinate that is not finite.
 CellOwners owners_along(const std::vector<double>& coordinate, double length, int ranks);
 
-// The owners of a step's products of these cells (in the domain's box, on its ranks): along the
-// slab axis of the grid the products spread into (the double layer's, or the single layer's
-// when with_double_layer is false), taken from `grid_cache` as CellLayers takes it. Collective.
-CellOwners cell_owners(const std::vector<SHCoeffs>& cells, const CellGrids& grids, const LayerDomain& domain,
+// The owners of a step's products of the cells whose node spheres (cell_sphere, cell_halo.h)
+// are `spheres`, nodes_per_cell nodes each (in the domain's box, on its ranks): by their
+// centres along the slab axis of the grid the products spread into (the double layer's, or
+// the single layer's when with_double_layer is false), taken from `grid_cache` as CellLayers
+// takes it. Collective.
+CellOwners cell_owners(const std::vector<CellSphere>& spheres, long nodes_per_cell, const LayerDomain& domain,
                        bool with_double_layer, SpmeGridCache* grid_cache);
+
+// Every cell's sphere on every rank, from those of the cells `holders` gives each rank (filled
+// in `spheres` by the rank that holds the cell's shape; the others' entries are overwritten):
+// 4 numbers a cell gathered, where the owners once needed every shape. Collective.
+void share_spheres(std::vector<CellSphere>& spheres, const CellOwners& holders, const Communicator& ranks);
 
 }  // namespace rbcflow

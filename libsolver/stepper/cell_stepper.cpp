@@ -198,10 +198,20 @@ FlowSolution CellStepper::solve() const {
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
+    // The owners from the cells' spheres, each computed by the rank that moved the cell last
+    // (history_owners_) and gathered.
+    std::vector<CellSphere> spheres(nc);
+    const int held_first = history_owners_.first[options_.domain.ranks.rank()];
+    const int held_end = history_owners_.first[options_.domain.ranks.rank() + 1];
+#pragma omp parallel for schedule(dynamic)
+    for (int k = held_first; k < held_end; ++k) {
+      const int c = history_owners_.order[k];
+      spheres[c] = cell_sphere(cells_[c].shape.coeffs(), *grids_);
+    }
+    share_spheres(spheres, history_owners_, options_.domain.ranks);
+    owners = cell_owners(spheres, np, options_.domain, lambda != 1.0, grid_cache_.get());
     std::vector<SHCoeffs> shapes(nc);
-    for (int c = 0; c < nc; ++c) shapes[c] = cells_[c].shape.coeffs();
-    owners = cell_owners(shapes, *grids_, options_.domain, lambda != 1.0, grid_cache_.get());
-    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
+    for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
     s.membrane.resize(nc);
     ScopedTimer membrane_timer(timing.membrane);
     // Each rank the membranes of the cells it owns in the products; the operators bring the

@@ -104,6 +104,14 @@ std::vector<SHCoeffs> edge_on_column(int N, int nc, double middle) {
   return cells;
 }
 
+// The owners of a step's products of `cells`, every sphere computed here.
+CellOwners owners_of(const std::vector<SHCoeffs>& cells, const CellGrids& grids, const LayerDomain& domain,
+                     SpmeGridCache* cache) {
+  std::vector<CellSphere> spheres;
+  for (const SHCoeffs& c : cells) spheres.push_back(cell_sphere(c, grids));
+  return cell_owners(spheres, grids.n_grid->grid().size(), domain, true, cache);
+}
+
 }  // namespace
 
 TEST(Ownership, BlocksCoverTheCellsInRankOrder) {
@@ -644,6 +652,46 @@ TEST(CellOwners, AlongTheAxisInEqualCounts) {
   EXPECT_THROW(owners_along({1.0}, 0.0, 1), std::invalid_argument);
 }
 
+// The spheres the owners are taken from: each rank computes those of the cells it holds (here
+// a permutation of the cells whose blocks are not the index blocks) and gathers the others'.
+// Every rank then has every cell's sphere, to the bit as one process computes it, and its
+// centre is the mean of the cell's nodes column by column (the coordinate the owners were once
+// taken from every shape by): the owners do not change.
+TEST(CellOwners, FromTheSpheresTheHoldersShare) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 7;
+  const auto grids = CellGrids::make(N, 2 * N);
+  std::vector<SHCoeffs> cells = edge_on_column(N, nc, 2.25);
+  std::reverse(cells.begin(), cells.end());  // from the top down: the owners are not the index blocks
+  const CellOwners holders = owners_along({3.0, 6.0, 0.5, 5.0, 1.0, 4.0, 2.0}, 7.0, world.size());
+  std::vector<CellSphere> spheres(nc);
+  for (int k = holders.first[world.rank()]; k < holders.first[world.rank() + 1]; ++k)
+    spheres[holders.order[k]] = cell_sphere(cells[holders.order[k]], *grids);
+  share_spheres(spheres, holders, world);
+  std::vector<double> coordinate;
+  for (int c = 0; c < nc; ++c) {
+    const CellSphere mine = cell_sphere(cells[c], *grids);
+    EXPECT_EQ(spheres[c].center, mine.center) << "cell " << c;
+    EXPECT_EQ(spheres[c].radius, mine.radius) << "cell " << c;
+    const Eigen::MatrixXd x = grids->n_grid->synthesize(cells[c]);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(mine.center[k], x.col(k).mean()) << "cell " << c << ", axis " << k;
+    coordinate.push_back(x.col(2).mean());
+  }
+  LayerDomain shared{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 21.0)), 1e-6};
+  shared.ranks = world;
+  SpmeGridCache cache;
+  const CellOwners owners = cell_owners(spheres, grids->n_grid->grid().size(), shared, true, &cache);
+  const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(shared, nc * grids->n_grid->grid().size(), true, &cache);
+  const CellOwners expected = grid->distributed() ? owners_along(coordinate, 21.0, world.size()) : owners_by_block(nc, world.size());
+  EXPECT_EQ(owners.order, expected.order);
+  EXPECT_EQ(owners.first, expected.first);
+  if (world.size() > 1 && grid->distributed()) {
+    EXPECT_FALSE(owners.in_cell_order());
+  }
+  std::vector<CellSphere> two(2);
+  EXPECT_THROW(share_spheres(two, holders, world), std::invalid_argument);
+}
+
 // A step's owners on the world's ranks: the cells (listed from the top of the box down) taken
 // along z, the slab axis of the double layer's grid (the box's longest side), in equal counts,
 // and the solve of (10) with the cells in that order and those blocks is one rank's solve,
@@ -658,7 +706,7 @@ TEST(DistributedLayers, CellsOwnedAlongTheSlabsSolveAsOneRank) {
   LayerDomain shared = one;
   shared.ranks = world;
   SpmeGridCache cache;
-  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  const CellOwners owners = owners_of(cells, *grids, shared, &cache);
   const std::shared_ptr<const SpmeGrid> grid = cell_layer_grid(shared, 3L * grids->n_grid->grid().size(), true, &cache);
   if (grid->distributed()) {
     EXPECT_EQ(grid->axis(0), 2);
@@ -710,7 +758,7 @@ TEST(DistributedLayers, PartsStayWithinTheHalo) {
   LayerDomain shared{PeriodicBox(Eigen::Vector3d(4.5, 4.5, 72.0)), 1e-6};
   shared.ranks = world;
   SpmeGridCache cache;
-  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  const CellOwners owners = owners_of(cells, *grids, shared, &cache);
   ASSERT_TRUE(owners.in_cell_order());  // listed up the column
   shared.owned_first = owners.first;
   CellLayers layers(cells, grids, shared, {}, true, &cache);
@@ -767,7 +815,7 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
   LayerDomain shared{box, 1e-6};
   shared.ranks = world;
   SpmeGridCache cache;
-  const CellOwners owners = cell_owners(cells, *grids, shared, true, &cache);
+  const CellOwners owners = owners_of(cells, *grids, shared, &cache);
   ASSERT_TRUE(owners.in_cell_order());
   shared.owned_first = owners.first;
   CellLayers layers(cells, grids, shared, {}, true, &cache);
