@@ -199,16 +199,18 @@ FlowSolution CellStepper::solve() const {
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
     // The owners from the cells' spheres, each computed by the rank that moved the cell last
-    // (history_owners_) and gathered.
+    // (history_owners_) and gathered; one process owns every cell and needs none.
     std::vector<CellSphere> spheres(nc);
-    const int held_first = history_owners_.first[options_.domain.ranks.rank()];
-    const int held_end = history_owners_.first[options_.domain.ranks.rank() + 1];
+    if (options_.domain.ranks.size() > 1) {
+      const int held_first = history_owners_.first[options_.domain.ranks.rank()];
+      const int held_end = history_owners_.first[options_.domain.ranks.rank() + 1];
 #pragma omp parallel for schedule(dynamic)
-    for (int k = held_first; k < held_end; ++k) {
-      const int c = history_owners_.order[k];
-      spheres[c] = cell_sphere(cells_[c].shape.coeffs(), *grids_);
+      for (int k = held_first; k < held_end; ++k) {
+        const int c = history_owners_.order[k];
+        spheres[c] = cell_sphere(cells_[c].shape.coeffs(), *grids_);
+      }
+      share_spheres(spheres, history_owners_, options_.domain.ranks);
     }
-    share_spheres(spheres, history_owners_, options_.domain.ranks);
     owners = cell_owners(spheres, np, options_.domain, lambda != 1.0, grid_cache_.get());
     std::vector<SHCoeffs> shapes(nc);
     for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
