@@ -42,6 +42,7 @@ CellSphere cell_sphere(const SHCoeffs& shape, const CellGrids& grids);
 // the grid's `size` planes along box axis `axis`, B-splines of order `order`.
 struct SlabPlanes {
   int axis = 0, size = 0, first_plane = 0, planes = 0, order = 0;
+  friend bool operator==(const SlabPlanes&, const SlabPlanes&) = default;
 };
 
 // This rank's planes of `grid`, or none where every rank holds it whole.

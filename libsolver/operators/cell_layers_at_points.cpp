@@ -10,6 +10,12 @@
 
 namespace rbcflow {
 
+std::shared_ptr<const SpmeGrid> cell_layers_at_points_grid(const LayerDomain& domain, EwaldKernel kernel, long nodes,
+                                                           long points, SpmeGridCache* grid_cache) {
+  if (!domain.box) throw std::invalid_argument("cell_layers_at_points_grid: free space has no grid");
+  return ewald_grid(grid_cache, kernel, domain.ewald_tolerance, *domain.box, nodes, points, {}, domain.ranks);
+}
+
 CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
                                        const Eigen::MatrixXd* single_layer_density, const DensityHalo& bring_density)
     : layers_(layers), points_(points) {
@@ -29,13 +35,11 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   // sums hold no pair beyond it (NodeShares::reach).
   std::array<NodeShares, 2> node_shares{};
   if (domain.box) {
-    const PeriodicBox& box = *domain.box;
     // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's
     // real-space sources (ewald_plan.h). A rank without cells takes part in the transforms of
     // a grid split over the ranks.
     auto plan = [&](EwaldKernel kernel, double& xi, NodeShares& shares) -> std::unique_ptr<EwaldPlan> {
-      auto grid = ewald_grid(layers.grid_cache(), kernel, domain.ewald_tolerance, box, ns, points_.rows(), {},
-                             domain.ranks);
+      auto grid = cell_layers_at_points_grid(domain, kernel, ns, points_.rows(), layers.grid_cache());
       xi = grid->parameters().xi;
       shares.reach = grid->parameters().cutoff;
       if (owned.empty() && !grid->distributed()) return nullptr;

@@ -15,6 +15,12 @@
 
 namespace rbcflow {
 
+// The grid of the layers of `nodes` cell nodes at `points` points in a periodic domain, for the
+// single layer (EwaldKernel::stokeslet) or the double layer (stresslet), from `grid_cache`:
+// CellLayersAtPoints's, known before it is built (the slabs of a step's halo). Collective.
+std::shared_ptr<const SpmeGrid> cell_layers_at_points_grid(const LayerDomain& domain, EwaldKernel kernel, long nodes,
+                                                           long points, SpmeGridCache* grid_cache);
+
 class CellLayersAtPoints {
  public:
   // single_layer_density: as in CellLayers, the one single-layer density of the step (its

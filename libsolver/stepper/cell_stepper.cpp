@@ -19,6 +19,7 @@
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 #include "libsolver/stepper/halo_density.h"
+#include "libsolver/stepper/step_slabs.h"
 
 namespace rbcflow {
 
@@ -195,6 +196,7 @@ FlowSolution CellStepper::solve() const {
   // rank's owned cells' rows until the end.
   CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
   std::optional<HaloDensity> step_traction;
+  std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
@@ -212,6 +214,14 @@ FlowSolution CellStepper::solve() const {
       share_spheres(spheres, history_owners_, options_.domain.ranks);
     }
     owners = cell_owners(spheres, np, options_.domain, lambda != 1.0, grid_cache_.get());
+    // This rank's slabs of the other operators' grids, before any is built: with the layers'
+    // own, the step's halo (step_slabs.h).
+    const std::optional<long> section_points =
+        section_meter_ ? section_meter_->points_per_step() : std::optional<long>{};
+    other_slabs = step_slabs(options_.domain,
+                             StepOperators{static_cast<long>(nc) * np, lambda != 1.0, wall_.get(),
+                                           static_cast<bool>(section_meter_), section_points},
+                             grid_cache_.get());
     std::vector<SHCoeffs> shapes(nc);
     for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
     s.membrane.resize(nc);
@@ -452,12 +462,12 @@ FlowSolution CellStepper::solve() const {
   if (layers) {
     // The step's halo: the layers' and the cells whose stencils reach this rank's slabs of the
     // grids of the layers at the wall and at the flux sections (their densities read) and of
-    // the wall at the cells (their rows of its part).
-    std::vector<SlabPlanes> other_slabs;
-    if (at_wall) other_slabs = at_wall->slabs();
-    if (section_meter_) other_slabs.insert(other_slabs.end(), section_meter_->slabs().begin(), section_meter_->slabs().end());
+    // the wall at the cells (their rows of its part), as foreseen before they were built.
+    if (at_wall) check_built_slabs(at_wall->slabs(), other_slabs, "the cells' layers at the wall");
+    if (section_meter_) check_built_slabs(section_meter_->slabs(), other_slabs, "the cells' layers at the sections");
     if (wall_at_cells)
-      if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid())) other_slabs.push_back(*slab);
+      if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid()))
+        check_built_slabs({*slab}, other_slabs, "the wall at the cells");
     s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
   }
   if (velocity) {

@@ -81,6 +81,17 @@ SectionFluxMeter::SectionFluxMeter(const WallCoupling& wall, std::vector<std::ve
   }
 }
 
+std::optional<long> SectionFluxMeter::points_per_step() const {
+  long n = 0;
+  for (const std::vector<Candidate>& candidates : branches_) {
+    const long m = candidates.front().points.rows();
+    for (const Candidate& c : candidates)
+      if (c.points.rows() != m) return std::nullopt;
+    n += m;
+  }
+  return n;
+}
+
 int SectionFluxMeter::clearest(int b, const CellLayers* layers) const {
   const std::vector<Candidate>& candidates = branches_[b];
   if (!layers || candidates.size() == 1) return 0;

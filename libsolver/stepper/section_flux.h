@@ -48,6 +48,9 @@ class SectionFluxMeter {
   // The flux through each branch, along its sections' normal; `cells` null without cells.
   std::vector<double> fluxes(const Eigen::Vector3d& mean_velocity, const PointField& wall_force,
                              const CellsAtStep* cells);
+  // The points fluxes() evaluates the cells' layers at, one section of each branch: known before
+  // the sections are chosen where each branch's candidates have as many points; else none.
+  std::optional<long> points_per_step() const;
   // This rank's slabs of the grids the last fluxes() with cells read the cells' densities on
   // (CellLayersAtPoints::slabs; empty before): part of the step's halo (CellLayers::halo_with).
   const std::vector<SlabPlanes>& slabs() const { return slabs_; }

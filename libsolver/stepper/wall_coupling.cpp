@@ -72,6 +72,10 @@ WallOperator WallCoupling::operator_at(const PointField& points, TargetRows rows
   return WallOperator(elements_, points, rows, box_, ewald_tolerance_, grid_cache_.get(), ranks);
 }
 
+std::shared_ptr<const SpmeGrid> WallCoupling::grid_at(long targets, const Communicator& ranks) const {
+  return WallOperator::grid_at_rows(grid_cache_.get(), ewald_tolerance_, box_, elements_->points.rows(), targets, ranks);
+}
+
 PointField WallCoupling::velocity_at(WallOperator& at_points, const PointField& force) {
   return (-1.0 / (8.0 * std::numbers::pi)) * at_points.apply(force);
 }

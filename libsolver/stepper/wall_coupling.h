@@ -49,6 +49,8 @@ class WallCoupling {
   // One rank's part of the operator at every point of the ranks (WallOperator's TargetRows
   // constructor): the near field and real space at its `rows`, the smooth part on its slab.
   WallOperator operator_at(const PointField& points, TargetRows rows, const Communicator& ranks) const;
+  // The grid of that operator at `targets` points (WallOperator::grid_at_rows).
+  std::shared_ptr<const SpmeGrid> grid_at(long targets, const Communicator& ranks) const;
   static PointField velocity_at(WallOperator& at_points, const PointField& force);
   void report_memory(MemoryReport& report) const {
     solver_.report_memory(report);

@@ -84,12 +84,17 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                                 std::to_string(rows.end) + ") of " + std::to_string(targets.rows()));
   near_ = near_field(*elements_, targets_.middleRows(rows.begin, rows.end - rows.begin));
   for (const auto& [t, q] : near_.coincident) targets_.row(rows.begin + t) = elements_->points.row(q);
-  ewald_.emplace(ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, elements_->points.rows(),
-                            targets_.rows(), {}, ranks_),
+  ewald_.emplace(grid_at_rows(grid_cache, ewald_tolerance, box, elements_->points.rows(), targets_.rows(), ranks_),
                  wrapped(elements_->points, box), wrapped(targets_, box), rows);
   // Applied once a step (the wall's velocity at the cells), but in the first step's start
   // sweeps: kept pair coefficients would be filled once and held for nothing.
   ewald_->keep_pairs_up_to(0);
+}
+
+std::shared_ptr<const SpmeGrid> WallOperator::grid_at_rows(SpmeGridCache* grid_cache, double ewald_tolerance,
+                                                           const PeriodicBox& box, long wall_points, long targets,
+                                                           const Communicator& ranks) {
+  return ewald_grid(grid_cache, EwaldKernel::stokeslet, ewald_tolerance, box, wall_points, targets, {}, ranks);
 }
 
 const SpmeGrid& WallOperator::grid() const {

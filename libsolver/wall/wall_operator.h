@@ -71,6 +71,11 @@ class WallOperator {
   // step applies it once).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
                const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks);
+  // The grid that constructor takes for `wall_points` wall nodes at `targets` targets: known
+  // before the operator is built (the slabs of a step's halo). Collective, as the constructor.
+  static std::shared_ptr<const SpmeGrid> grid_at_rows(SpmeGridCache* grid_cache, double ewald_tolerance,
+                                                      const PeriodicBox& box, long wall_points, long targets,
+                                                      const Communicator& ranks);
 
   // N_W f at the targets, one row each; f one row per wall node.
   PointField apply(const PointField& f);

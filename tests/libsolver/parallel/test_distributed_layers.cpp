@@ -28,6 +28,7 @@
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/step_slabs.h"
 #include "libsolver/stepper/cell_velocity.h"
 
 using namespace rbcflow;
@@ -827,6 +828,23 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
   std::vector<SlabPlanes> other_slabs = at_wall.slabs();
   if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells.grid())) other_slabs.push_back(*slab);
   const std::vector<int> halo = layers.halo_with(other_slabs);
+  // The slabs foreseen before the operators are built (step_slabs.h) are the ones they take: the
+  // layers at the wall nodes' two grids and the wall's at the cell nodes.
+  std::vector<SlabPlanes> foreseen;
+  for (const EwaldKernel kernel : {EwaldKernel::stokeslet, EwaldKernel::stresslet})
+    if (const auto slab = rank_slab(*cell_layers_at_points_grid(shared, kernel, static_cast<long>(nc) * np,
+                                                                  wall->wall.surface.points.rows(), &cache)))
+      foreseen.push_back(*slab);
+  if (const auto slab =
+          rank_slab(*WallOperator::grid_at_rows(&cache, 1e-6, box, wall->points.rows(), static_cast<long>(nc) * np, world)))
+    foreseen.push_back(*slab);
+  EXPECT_EQ(foreseen, other_slabs);
+  EXPECT_NO_THROW(check_built_slabs(other_slabs, foreseen, "the test's operators"));
+  if (!foreseen.empty()) {
+    SlabPlanes across = foreseen.back();  // the same planes along another axis
+    across.axis = (across.axis + 1) % 3;
+    EXPECT_THROW(check_built_slabs({across}, foreseen, "a grid split along another axis"), std::logic_error);
+  }
   // 0: outside, 1: owned, 2: halo, by node row.
   std::vector<int> kind(static_cast<std::size_t>(nc) * np, 0);
   for (int c = owned.begin; c < owned.end; ++c) std::fill_n(kind.begin() + static_cast<long>(c) * np, np, 1);
