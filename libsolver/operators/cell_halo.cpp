@@ -1,7 +1,10 @@
 #include "cell_halo.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "geometry/surface/sh_surface.h"
 
 namespace rbcflow {
 
@@ -14,7 +17,11 @@ CellSphere bounding_sphere(const Eigen::MatrixXd& nodes) {
 }
 
 CellSphere cell_sphere(const SHCoeffs& shape, const CellGrids& grids) {
-  return bounding_sphere(grids.n_grid->synthesize(shape));
+  // The geometry the cell's layers take (CellQuadratureGeometry): the same nodes and area.
+  const SurfaceGeometry g = surface_geometry(shape.resampled(grids.order), *grids.n_grid);
+  CellSphere s = bounding_sphere(g.x);
+  s.area = surface_area(g);
+  return s;
 }
 
 std::optional<SlabPlanes> rank_slab(const SpmeGrid& grid) {
@@ -64,6 +71,32 @@ std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange ow
     if (in) halo.push_back(c);
   }
   return halo;
+}
+
+HaloExtent layers_halo_extent(double near_reach, const SpmeGrid* single_grid, const SpmeGrid* double_grid) {
+  HaloExtent extent;
+  extent.reach = near_reach;
+  for (const SpmeGrid* grid : {single_grid, double_grid}) {
+    if (!grid) continue;
+    extent.reach = std::max(extent.reach, grid->parameters().cutoff);
+    if (const std::optional<SlabPlanes> slab = rank_slab(*grid)) {
+      extent.slabs.push_back(*slab);
+    } else {
+      extent.every_cell = true;  // a grid every rank holds whole: this rank's smooth part reaches every node
+    }
+  }
+  if (!single_grid) extent.every_cell = true;  // free space: direct sums at every node
+  return extent;
+}
+
+std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange owned, const std::optional<PeriodicBox>& box,
+                           const HaloExtent& extent, const std::vector<SlabPlanes>& other_slabs) {
+  std::vector<SlabPlanes> slabs;
+  if (!extent.every_cell) {
+    slabs = extent.slabs;
+    slabs.insert(slabs.end(), other_slabs.begin(), other_slabs.end());
+  }
+  return cell_halo(spheres, owned, box, extent.reach, slabs);
 }
 
 }  // namespace rbcflow

@@ -29,13 +29,15 @@ namespace rbcflow {
 struct CellSphere {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 0.0;
+  double area = 0.0;  // of the cell's surface on the N grid (cell_sphere; its mesh size h = sqrt(area) / N)
 };
 
 // The sphere about the mean of the nodes (rows x 3; each coordinate's mean, column by column)
 // through the farthest node.
 CellSphere bounding_sphere(const Eigen::MatrixXd& nodes);
-// The sphere of a cell's nodes on the N grid: what a rank that holds its shape tells the others
-// of it (cell_owners.h), 4 numbers instead of the shape's coefficients.
+// The sphere of a cell's nodes on the N grid and the cell's area there: what a rank that holds
+// its shape tells the others of it (cell_owners.h), 5 numbers instead of the shape's
+// coefficients.
 CellSphere cell_sphere(const SHCoeffs& shape, const CellGrids& grids);
 
 // One rank's planes of a grid split into slabs: planes [first_plane, first_plane + planes) of
@@ -59,5 +61,21 @@ bool reaches_slab(const CellSphere& sphere, const SlabPlanes& slab, const Period
 // owned.
 std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange owned, const std::optional<PeriodicBox>& box,
                            double reach, const std::vector<SlabPlanes>& slabs);
+
+// What a rank's halo in a step's cell layers (cell_layers.h) is taken from: the reach about its
+// owned cells, its slabs of the grids split over the ranks, and whether its part reaches every
+// node (free space, or a grid every rank holds whole).
+struct HaloExtent {
+  double reach = 0.0;
+  std::vector<SlabPlanes> slabs;
+  bool every_cell = false;
+};
+// The extent of the layers' products on these grids (null: none; a null single-layer grid is
+// free space), `near_reach` the owned cells' largest near distance plus mesh size.
+HaloExtent layers_halo_extent(double near_reach, const SpmeGrid* single_grid, const SpmeGrid* double_grid);
+// The halo of the layers' products and of other operators whose grids' slabs of this rank are
+// `other_slabs`: cell_halo over both slabs, or every cell not owned.
+std::vector<int> cell_halo(const std::vector<CellSphere>& spheres, OwnedRange owned, const std::optional<PeriodicBox>& box,
+                           const HaloExtent& extent, const std::vector<SlabPlanes>& other_slabs);
 
 }  // namespace rbcflow

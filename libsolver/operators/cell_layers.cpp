@@ -118,7 +118,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       node_shares[1] = {pair_share_radius(box, double_grid->parameters().cutoff), double_grid->parameters().cutoff};
     }
   }
-  find_halo_extent(single_grid.get(), double_grid.get());
+  // A nearly-singular target lies within the near distance of the continuous surface, which
+  // between the nodes can reach beyond their bounding sphere (cell_halo.h's spheres), by less
+  // than the mesh size h (test_cell_halo.cpp): the reach adds h.
+  double near_reach = 0.0;
+  for (int c = owned_.begin; c < owned_.end; ++c)
+    near_reach = std::max(near_reach, cells_[c]->near_distance() + cells_[c]->mesh_size());
+  halo_extent_ = layers_halo_extent(near_reach, single_grid.get(), double_grid.get());
   halo_ = halo_with({});
   geometry_timer.stop();
   if (single_density_ && bring_density) bring_density(halo_);
@@ -265,35 +271,34 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen
                            coincident_sources(nodes_.size(), first, n));
 }
 
-void CellLayers::find_halo_extent(const SpmeGrid* single_grid, const SpmeGrid* double_grid) {
-  // A nearly-singular target lies within the near distance of the continuous surface, which
-  // between the nodes can reach beyond their bounding sphere (cell_halo.h's spheres), by less
-  // than the mesh size h (test_cell_halo.cpp): the reach adds h.
-  for (int c = owned_.begin; c < owned_.end; ++c)
-    halo_reach_ = std::max(halo_reach_, cells_[c]->near_distance() + cells_[c]->mesh_size());
-  for (const SpmeGrid* grid : {single_grid, double_grid}) {
-    if (!grid) continue;
-    halo_reach_ = std::max(halo_reach_, grid->parameters().cutoff);
-    if (const std::optional<SlabPlanes> slab = rank_slab(*grid)) {
-      halo_slabs_.push_back(*slab);
-    } else {
-      halo_every_cell_ = true;  // a grid every rank holds whole: this rank's smooth part reaches every node
-    }
-  }
-  if (!single_grid) halo_every_cell_ = true;  // free space: direct sums at every node
-}
-
 std::vector<int> CellLayers::halo_with(const std::vector<SlabPlanes>& other_slabs) const {
   if (owns_all()) return {};
-  std::vector<SlabPlanes> slabs;
-  if (!halo_every_cell_) {
-    slabs = halo_slabs_;
-    slabs.insert(slabs.end(), other_slabs.begin(), other_slabs.end());
-  }
   const int np = nodes_per_cell();
   std::vector<CellSphere> spheres;
   for (int c = 0; c < num_cells_; ++c) spheres.push_back(bounding_sphere(nodes_.x.middleRows(c * np, np)));
-  return cell_halo(spheres, owned_, domain_.box, halo_reach_, slabs);
+  return cell_halo(spheres, owned_, domain_.box, halo_extent_, other_slabs);
+}
+
+std::vector<int> cell_layers_halo(const std::vector<CellSphere>& spheres, const CellGrids& grids,
+                                  const LayerDomain& domain, const QuadratureOptions& options,
+                                  bool with_double_layer, SpmeGridCache* grid_cache,
+                                  const std::vector<SlabPlanes>& other_slabs) {
+  const int nc = static_cast<int>(spheres.size());
+  const OwnedRange owned = owned_cells(nc, domain);
+  if (owned.size() == nc) return {};
+  // The layers' extent (CellLayers's constructor), the owned cells' near distances from their
+  // areas, the grids from the cache.
+  double near_reach = 0.0;
+  for (int c = owned.begin; c < owned.end; ++c)
+    near_reach = std::max(near_reach, cell_near_reach(spheres[c].area, grids.order, options));
+  std::shared_ptr<const SpmeGrid> single_grid, double_grid;
+  if (domain.box) {
+    const long nodes = static_cast<long>(nc) * grids.n_grid->grid().size();
+    single_grid = cell_layer_grid(domain, nodes, false, grid_cache);
+    if (with_double_layer) double_grid = cell_layer_grid(domain, nodes, true, grid_cache);
+  }
+  return cell_halo(spheres, owned, domain.box, layers_halo_extent(near_reach, single_grid.get(), double_grid.get()),
+                   other_slabs);
 }
 
 PairShares CellLayers::take_folded_shares(Layer layer) const {

@@ -78,6 +78,15 @@ struct LayerDomain {
 std::shared_ptr<const SpmeGrid> cell_layer_grid(const LayerDomain& domain, long nodes, bool with_double_layer,
                                                 SpmeGridCache* grid_cache);
 
+// The halo CellLayers::halo_with(other_slabs) names for these cells (positions in the layers'
+// order, ascending), from their spheres in that order (cell_sphere), before the layers are
+// built: the cells a rank reads or adds to in a step besides its own (domain.owned_first's
+// block). Collective, as the layers (their grids).
+std::vector<int> cell_layers_halo(const std::vector<CellSphere>& spheres, const CellGrids& grids,
+                                  const LayerDomain& domain, const QuadratureOptions& options,
+                                  bool with_double_layer, SpmeGridCache* grid_cache,
+                                  const std::vector<SlabPlanes>& other_slabs);
+
 class CellLayers {
  public:
   // with_double_layer = false skips everything the double layer needs (lambda = 1). SPME grids
@@ -150,9 +159,6 @@ class CellLayers {
   // as sources, at every node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
-  // The reach and slabs of the halo of the owned cells (cell_halo.h) in the products of these
-  // grids (null: none).
-  void find_halo_extent(const SpmeGrid* single_grid, const SpmeGrid* double_grid);
   // The owned cells' rows of stacked node data.
   template <class Matrix>
   auto owned_rows(const Matrix& stacked) const {
@@ -169,11 +175,7 @@ class CellLayers {
   SpmeGridCache* grid_cache_;
   OwnedRange owned_;
   std::vector<int> halo_;
-  // What the halo is taken from: the reach about the owned cells, this rank's slabs of the
-  // grids, and whether a part reaches every node (halo_with).
-  double halo_reach_ = 0.0;
-  std::vector<SlabPlanes> halo_slabs_;
-  bool halo_every_cell_ = false;
+  HaloExtent halo_extent_;  // what the halo is taken from (halo_with)
   int num_cells_ = 0;
   std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;  // null where not owned
   SourceNodes nodes_;

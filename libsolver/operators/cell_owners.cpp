@@ -81,7 +81,7 @@ void share_spheres(std::vector<CellSphere>& spheres, const CellOwners& holders, 
   std::vector<std::vector<std::span<double>>> items;  // in the holders' order: their blocks are share_blocks'
   for (const int c : holders.order) {
     CellSphere& s = spheres[static_cast<std::size_t>(c)];
-    items.push_back({std::span<double>(s.center.data(), 3), std::span<double>(&s.radius, 1)});
+    items.push_back({std::span<double>(s.center.data(), 3), std::span<double>(&s.radius, 1), std::span<double>(&s.area, 1)});
   }
   share_blocks(ranks, items);
 }

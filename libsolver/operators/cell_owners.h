@@ -54,7 +54,7 @@ CellOwners cell_owners(const std::vector<CellSphere>& spheres, long nodes_per_ce
 
 // Every cell's sphere on every rank, from those of the cells `holders` gives each rank (filled
 // in `spheres` by the rank that holds the cell's shape; the others' entries are overwritten):
-// 4 numbers a cell gathered, where the owners once needed every shape. Collective.
+// 5 numbers a cell gathered, where the owners once needed every shape. Collective.
 void share_spheres(std::vector<CellSphere>& spheres, const CellOwners& holders, const Communicator& ranks);
 
 }  // namespace rbcflow

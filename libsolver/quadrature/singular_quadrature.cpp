@@ -78,8 +78,8 @@ CellQuadratureGeometry::CellQuadratureGeometry(const SHCoeffs& x, std::shared_pt
   x_data_ = interp_->node_data(x_);
   jn_data_ = interp_->node_data(jn_);
   rho1_ = std::min(std::numbers::pi, options_.patch_radius_factor * std::numbers::pi / std::sqrt(double(N)));
-  h_ = std::sqrt(surface_area(g)) / N;
-  near_ = options_.near_factor * std::sqrt(h_);
+  h_ = cell_mesh_size(surface_area(g), N);
+  near_ = cell_near_distance(h_, options_);
 }
 
 SourceNodes cell_nodes(const SHCoeffs& x, const CellGrids& grids) {

@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <cmath>
 #include <memory>
 #include <span>
 #include <string>
@@ -56,6 +57,19 @@ struct QuadratureTarget {
   double distance = 0;    // 0 for points on the surface, |x - projection| otherwise
   int self_node = -1;     // the cell's node that coincides with x (on-surface targets), or -1
 };
+
+// A cell's mesh size h = sqrt(A / N^2) from its area A on the N grid, and the reach of its
+// nearly-singular corrections beyond its nodes: the near distance near_factor sqrt(h) plus h
+// (the nodes lie within h of the surface; near_targets.cpp). CellQuadratureGeometry's, from
+// the area alone (a cell's halo before its geometry is built; cell_halo.h).
+inline double cell_mesh_size(double area, int order) { return std::sqrt(area) / order; }
+inline double cell_near_distance(double mesh_size, const QuadratureOptions& options) {
+  return options.near_factor * std::sqrt(mesh_size);
+}
+inline double cell_near_reach(double area, int order, const QuadratureOptions& options) {
+  const double h = cell_mesh_size(area, order);
+  return cell_near_distance(h, options) + h;
+}
 
 // Geometry of one cell shared by all its corrections: the nodes, the Hermite data of x and of
 // the area vector J n = (a1 x a2) / sin(theta) (dA n = J n dOmega), and the patch radius.

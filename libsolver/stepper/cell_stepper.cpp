@@ -197,6 +197,7 @@ FlowSolution CellStepper::solve() const {
   CellOwners owners = owners_by_block(nc, options_.domain.ranks.size());
   std::optional<HaloDensity> step_traction;
   std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
+  std::vector<int> step_halo;           // the cells this rank reads or adds to besides its own (positions in owner order)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
@@ -222,6 +223,14 @@ FlowSolution CellStepper::solve() const {
                              StepOperators{static_cast<long>(nc) * np, lambda != 1.0, wall_.get(),
                                            static_cast<bool>(section_meter_), section_points},
                              grid_cache_.get());
+    if (options_.domain.ranks.size() > 1) {
+      std::vector<CellSphere> in_owner_order(nc);
+      for (int k = 0; k < nc; ++k) in_owner_order[k] = spheres[owners.order[k]];
+      LayerDomain owned_domain = options_.domain;
+      owned_domain.owned_first = owners.first;
+      step_halo = cell_layers_halo(in_owner_order, *grids_, owned_domain, options_.quadrature, lambda != 1.0,
+                                   grid_cache_.get(), other_slabs);
+    }
     std::vector<SHCoeffs> shapes(nc);
     for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
     s.membrane.resize(nc);
@@ -468,7 +477,11 @@ FlowSolution CellStepper::solve() const {
     if (wall_at_cells)
       if (const std::optional<SlabPlanes> slab = rank_slab(wall_at_cells->grid()))
         check_built_slabs({*slab}, other_slabs, "the wall at the cells");
-    s.halo_cells = static_cast<int>(layers->halo_with(other_slabs).size());
+    // The halo named before the layers were built must be the one they name (cell_layers_halo):
+    // the cells a rank will hold besides its own are chosen by it.
+    if (layers->halo_with(other_slabs) != step_halo)
+      throw std::logic_error("CellStepper: the step's halo named before its layers were built is not theirs" + at_step(step));
+    s.halo_cells = static_cast<int>(step_halo.size());
   }
   if (velocity) {
     s.velocity = velocity->owned();

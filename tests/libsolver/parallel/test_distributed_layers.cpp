@@ -674,6 +674,9 @@ TEST(CellOwners, FromTheSpheresTheHoldersShare) {
     const CellSphere mine = cell_sphere(cells[c], *grids);
     EXPECT_EQ(spheres[c].center, mine.center) << "cell " << c;
     EXPECT_EQ(spheres[c].radius, mine.radius) << "cell " << c;
+    EXPECT_EQ(spheres[c].area, mine.area) << "cell " << c;
+    // The area the cell's layers take for its mesh size (CellQuadratureGeometry): the same bits.
+    EXPECT_EQ(mine.area, surface_area(surface_geometry(cells[c], *grids->n_grid))) << "cell " << c;
     const Eigen::MatrixXd x = grids->n_grid->synthesize(cells[c]);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(mine.center[k], x.col(k).mean()) << "cell " << c << ", axis " << k;
     coordinate.push_back(x.col(2).mean());
@@ -839,6 +842,11 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
           rank_slab(*WallOperator::grid_at_rows(&cache, 1e-6, box, wall->points.rows(), static_cast<long>(nc) * np, world)))
     foreseen.push_back(*slab);
   EXPECT_EQ(foreseen, other_slabs);
+  // The halo named from the cells' spheres before the layers exist (cell_layers_halo) is theirs.
+  std::vector<CellSphere> spheres;
+  for (const SHCoeffs& x : cells) spheres.push_back(cell_sphere(x, *grids));
+  EXPECT_EQ(cell_layers_halo(spheres, *grids, shared, {}, true, &cache, other_slabs), halo);
+  EXPECT_EQ(cell_layers_halo(spheres, *grids, shared, {}, true, &cache, {}), layers.halo());
   EXPECT_NO_THROW(check_built_slabs(other_slabs, foreseen, "the test's operators"));
   if (!foreseen.empty()) {
     SlabPlanes across = foreseen.back();  // the same planes along another axis
