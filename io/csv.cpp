@@ -96,7 +96,8 @@ const std::vector<std::string>& diagnostics_columns() {
       "pressure_gradient_x", "pressure_gradient_y", "pressure_gradient_z", "effective_viscosity",
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
       "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement",
-      "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain", "cell_free_layer", "min_wall_gap"};
+      "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain", "cell_free_layer", "min_wall_gap",
+      "max_volume_correction"};
   return columns;
 }
 
@@ -149,6 +150,7 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(csv_number(r.tube_velocity)).add(csv_number(r.pseudo_shear_rate_per_s));
   row.add(csv_number(r.discharge_hematocrit)).add(csv_number(r.max_area_strain));
   row.add(csv_number(r.cell_free_layer)).add(csv_number(r.min_wall_gap));
+  row.add(csv_number(r.max_volume_correction));
   csv_.write(row.fields);
 }
 

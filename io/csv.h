@@ -40,6 +40,7 @@ struct DiagnosticsRow {
   std::optional<double> max_area_strain;
   std::optional<double> cell_free_layer;  // a tube or constriction with cells (cell_free_layer.h)
   std::optional<double> min_wall_gap;     // a wall and cells: closest approach of a cell to it
+  std::optional<double> max_volume_correction;  // the volume constraint's largest restoration (cells and the constraint)
 };
 
 struct CellRow {

@@ -124,6 +124,7 @@ DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, 
   if (!stepper.cells().empty()) row.max_area_strain = r.max_area_strain;
   row.cell_free_layer = r.cell_free_layer;
   row.min_wall_gap = r.min_wall_gap;
+  row.max_volume_correction = r.max_volume_correction;
   row.max_volume_error = r.max_volume_error;
   row.max_area_error = r.max_area_error;
   row.gmres_cells = r.gmres_iterations;

@@ -535,15 +535,19 @@ void CellStepper::share_for_output(FlowSolution& s) const {
       np);
 }
 
-void CellStepper::enforce_volume(int c) {
+double CellStepper::enforce_volume(int c) {
   // Move the surface along its normal by the uniform delta = (V0 - V) / A (twice: the
   // correction is first order), the variational volume constraint of section 10.2.
+  double restored = 0.0;
   for (int it = 0; it < 2; ++it) {
     const SurfaceGeometry g = cells_[c].shape.geometry(*grids_->n_grid);
-    const double delta = (state_.volume0[c] - enclosed_volume(g)) / surface_area(g);
+    const double deficit = state_.volume0[c] - enclosed_volume(g);
+    if (it == 0) restored = std::abs(deficit) / state_.volume0[c];
+    const double delta = deficit / surface_area(g);
     const Eigen::MatrixXd shift = delta * g.normal;
     cells_[c].shape.coeffs().values() += grids_->n_grid->analyze(shift).values();
   }
+  return restored;
 }
 
 void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
@@ -607,9 +611,10 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     report.wall_contacts = k.wall_contacts;
     report.collision_displacement = k.max_displacement;
   }
+  double volume_correction = 0.0;
   for (int k = first; k < end; ++k) {
     const int c = owners.order[k];
-    if (options_.volume_constraint) enforce_volume(c);
+    if (options_.volume_constraint) volume_correction = std::max(volume_correction, enforce_volume(c));
     const SurfaceGeometry g = cells_[c].shape.geometry(tn);
     const double dv = std::abs(enclosed_volume(g) / state_.volume0[c] - 1.0);
     const double da = std::abs(surface_area(g) / state_.area0[c] - 1.0);
@@ -622,6 +627,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   }
   stop_if_invalid(first_invalid);
   report.max_volume_error = largest(report.max_volume_error, ranks);
+  if (options_.volume_constraint) report.max_volume_correction = largest(volume_correction, ranks);
   report.max_area_error = largest(report.max_area_error, ranks);
   share_shapes(cells_, owners, ranks);
 }

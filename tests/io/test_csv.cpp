@@ -48,7 +48,7 @@ TEST(Csv, DiagnosticsHeaderIsTheContract) {
             "pressure_gradient_y,pressure_gradient_z,effective_viscosity,tube_hematocrit,max_volume_error,"
             "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds,collision_pairs,wall_contacts,"
             "collision_displacement,tube_velocity,pseudo_shear_rate_per_s,discharge_hematocrit,max_area_strain,"
-            "cell_free_layer,min_wall_gap");
+            "cell_free_layer,min_wall_gap,max_volume_correction");
   { CellsCsv c(dir / "cells.csv"); }
   EXPECT_EQ(first_line(dir / "cells.csv"),
             "step,time,cell,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,volume,area,"
@@ -73,6 +73,7 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   tube.discharge_hematocrit = 0.3125;
   tube.max_area_strain = 0.015625;
   tube.cell_free_layer = 0.375;
+  tube.max_volume_correction = 3.0517578125e-05;
   d.write(tube);
   // Read while the writer is still open: the rows are on disk.
   const CsvTable t = read_csv(dir / "diagnostics.csv");
@@ -94,6 +95,8 @@ TEST(Csv, RowsAreFlushedExactAndEmptyWhereNotApplicable) {
   EXPECT_EQ(t.rows[1][t.column("discharge_hematocrit")], "0.3125");
   EXPECT_EQ(t.rows[1][t.column("max_area_strain")], "0.015625");
   EXPECT_EQ(t.rows[1][t.column("cell_free_layer")], "0.375");
+  EXPECT_EQ(t.rows[0][t.column("max_volume_correction")], "");
+  EXPECT_EQ(t.rows[1][t.column("max_volume_correction")], "3.0517578125e-05");
   EXPECT_EQ(std::strtod(t.rows[0][t.column("pressure_gradient_z")].c_str(), nullptr), -1.0 / 3.0);
   EXPECT_EQ(t.rows[1][t.column("step")], "2");
 
