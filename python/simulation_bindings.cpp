@@ -71,10 +71,9 @@ class Simulation {
 
   py::array_t<double> cell_centroids() const {
     const CellStepper& s = run_->stepper();
-    Eigen::MatrixXd out(s.cells().size(), 3);
-    if (s.cells().empty()) return to_numpy(out);  // walls alone: no grids
-    for (std::size_t c = 0; c < s.cells().size(); ++c)
-      out.row(c) = volume_centroid(s.cells()[c].shape.geometry(*s.grids().n_grid)).transpose();
+    const std::vector<Eigen::Vector3d> x = s.volume_centroids();  // none for walls alone
+    Eigen::MatrixXd out(x.size(), 3);
+    for (std::size_t c = 0; c < x.size(); ++c) out.row(c) = x[c].transpose();
     return to_numpy(out);
   }
 

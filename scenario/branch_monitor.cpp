@@ -59,11 +59,4 @@ std::vector<BranchRow> BranchMonitor::update(long step, double time, const StepR
   return rows;
 }
 
-std::vector<Eigen::Vector3d> cell_centroids(const CellStepper& stepper) {
-  std::vector<Eigen::Vector3d> x;
-  if (stepper.cells().empty()) return x;
-  for (const Cell& c : stepper.cells()) x.push_back(volume_centroid(c.shape.geometry(*stepper.grids().n_grid)));
-  return x;
-}
-
 }  // namespace rbcflow

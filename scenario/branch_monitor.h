@@ -41,7 +41,4 @@ class BranchMonitor {
   std::vector<std::vector<double>> previous_;  // per branch, per cell: the offset after the last step
 };
 
-// The cells' volume centroids on the stepper's grid.
-std::vector<Eigen::Vector3d> cell_centroids(const CellStepper& stepper);
-
 }  // namespace rbcflow

@@ -88,9 +88,10 @@ std::vector<long> passed_at(const fs::path& path, long step, std::size_t branche
 
 class RunOutput {
  public:
-  // `frame_ranks`: the ranks that write rbcflow.h5 together (shared_output.h), if they do.
-  RunOutput(const Case& c, const Scenario& s, const CellStepper& stepper, std::optional<long> resume,
-            const std::optional<XdmfWriter::Ranks>& frame_ranks)
+  // `frame_ranks`: the ranks that write rbcflow.h5 together (shared_output.h), if they do;
+  // `centroids`: the cells' volume centroids at the start, where the vessel has branches.
+  RunOutput(const Case& c, const Scenario& s, std::optional<long> resume,
+            const std::optional<XdmfWriter::Ranks>& frame_ranks, const std::vector<Eigen::Vector3d>& centroids)
       : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
     if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
     if (!s.branches.empty()) {
@@ -99,7 +100,7 @@ class RunOutput {
       const std::optional<double> tube_area =
           s.branch_flow_by_meter ? std::optional<double>(std::numbers::pi * s.options.tube->radius * s.options.tube->radius)
                          : std::nullopt;
-      branches_.emplace(s.branches, s.vessel->period, tube_area, cell_centroids(stepper), passed);
+      branches_.emplace(s.branches, s.vessel->period, tube_area, centroids, passed);
     }
     if (c.output.xdmf) xdmf_.emplace(dir_, resume, "rbcflow", frame_ranks);
     if (c.output.vtk) vtk_.emplace(dir_, resume);
@@ -124,9 +125,10 @@ class RunOutput {
 
   DiagnosticsCsv& diagnostics() { return diagnostics_; }
 
-  // branches.csv after a step (a vessel with known branches).
-  void branches(const CellStepper& stepper, const StepReport& report) {
-    if (branches_) branches_csv_->write(branches_->update(stepper.steps(), stepper.time(), report, cell_centroids(stepper)));
+  // branches.csv after a step (a vessel with known branches), the cells' volume centroids then
+  // at `centroids`.
+  void branches(const CellStepper& stepper, const StepReport& report, const std::vector<Eigen::Vector3d>& centroids) {
+    if (branches_) branches_csv_->write(branches_->update(stepper.steps(), stepper.time(), report, centroids));
   }
 
  private:
@@ -164,6 +166,12 @@ struct Run::State {
     } else if (other_frames) {
       other_frames->write_frame(stepper.steps(), stepper.time(), frame_surfaces(stepper, s));
     }
+  }
+
+  // The cells' volume centroids where the vessel has branches (branches.csv), none elsewhere.
+  // Collective: every rank calls it.
+  std::vector<Eigen::Vector3d> branch_centroids() const {
+    return scenario.branches.empty() ? std::vector<Eigen::Vector3d>{} : stepper->volume_centroids();
   }
 
   // Runs `f`; an exception leaves with the last good checkpoint named.
@@ -244,8 +252,10 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   }
   const std::optional<XdmfWriter::Ranks> frame_ranks = frame_writers(r.ranks, static_cast<long>(stepper.cells().size()));
   if (frame_ranks) r.ranks.sum(0L);  // the other ranks wait until rank 0 has prepared the directory
+  // Every rank: each computes its own cells' (cell_centroids.h).
+  const std::vector<Eigen::Vector3d> centroids = r.branch_centroids();
   if (root) {
-    r.output.emplace(c, r.scenario, stepper, r.resume, frame_ranks);
+    r.output.emplace(c, r.scenario, r.resume, frame_ranks, centroids);
   } else if (frame_ranks && c.output.xdmf) {
     r.other_frames.emplace(c.output.dir, r.resume, "rbcflow", frame_ranks);
   }
@@ -282,9 +292,10 @@ void Run::step() {
     if (r.output && render_now) r.output->render(stepper, s);
     const StepReport report = stepper.advance(s);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const std::vector<Eigen::Vector3d> centroids = r.branch_centroids();
     if (r.output) {
       r.output->diagnostics().write(diagnostics_row(stepper, report, r.scenario, seconds));
-      r.output->branches(stepper, report);
+      r.output->branches(stepper, report, centroids);
     }
     if (report.max_volume_error > kMaxVolumeError) {
       char what[160];

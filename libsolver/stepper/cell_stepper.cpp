@@ -16,6 +16,7 @@
 #include "libsolver/operators/cell_owners.h"
 #include "libsolver/parallel/owned_rows.h"
 #include "libsolver/parallel/share_blocks.h"
+#include "libsolver/stepper/cell_centroids.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 #include "libsolver/stepper/halo_density.h"
@@ -630,6 +631,11 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   if (options_.volume_constraint) report.max_volume_correction = largest(volume_correction, ranks);
   report.max_area_error = largest(report.max_area_error, ranks);
   share_shapes(cells_, owners, ranks);
+}
+
+std::vector<Eigen::Vector3d> CellStepper::volume_centroids() const {
+  if (cells_.empty()) return {};
+  return rbcflow::volume_centroids(cells_, *grids_->n_grid, history_owners_, options_.domain.ranks);
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {

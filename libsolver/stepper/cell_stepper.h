@@ -171,6 +171,9 @@ class CellStepper {
   const Eigen::MatrixXd& velocity() const { return state_.previous_velocity; }
   const std::vector<double>& initial_volumes() const { return state_.volume0; }
   const std::vector<double>& initial_areas() const { return state_.area0; }
+  // Every cell's volume centroid at X^n, in cell order on every rank, each computed by the rank
+  // that moved the cell last (cell_centroids.h); empty without cells. Collective.
+  std::vector<Eigen::Vector3d> volume_centroids() const;
 
   // The whole state, every cell's velocities gathered from the ranks: collective.
   StepperState state() const;

@@ -26,6 +26,7 @@
 #include "libsolver/parallel/owned_rows.h"
 #include "libsolver/spme/spme_plan.h"
 #include "libsolver/membrane/membrane_law.h"
+#include "libsolver/stepper/cell_centroids.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/step_slabs.h"
@@ -696,6 +697,39 @@ TEST(CellOwners, FromTheSpheresTheHoldersShare) {
   EXPECT_THROW(share_spheres(two, holders, world), std::invalid_argument);
 }
 
+// The cells' volume centroids (cell_centroids.h): each rank computes those of the cells it
+// holds (a permutation whose blocks are not the index blocks) from their shapes alone, every
+// other shape here NaN on it, and gathers the others'. Every rank then has every cell's
+// centroid, to the bit as one process computes it from the true shape.
+TEST(CellCentroids, FromTheHoldersShapesAlone) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 7;
+  const auto grids = CellGrids::make(N, 2 * N);
+  std::vector<SHCoeffs> shapes = edge_on_column(N, nc, 2.25);
+  std::reverse(shapes.begin(), shapes.end());
+  const CellOwners holders = owners_along({3.0, 6.0, 0.5, 5.0, 1.0, 4.0, 2.0}, 7.0, world.size());
+  std::vector<Cell> cells(nc);
+  for (int c = 0; c < nc; ++c) cells[c].shape = SHSurface(shapes[c]);
+  std::vector<bool> held(nc, false);
+  for (int k = holders.first[world.rank()]; k < holders.first[world.rank() + 1]; ++k) held[holders.order[k]] = true;
+  for (int c = 0; c < nc; ++c)
+    if (!held[c]) cells[c].shape.coeffs().values().setConstant(std::nan(""));
+  const std::vector<Eigen::Vector3d> x = volume_centroids(cells, *grids->n_grid, holders, world);
+  ASSERT_EQ(x.size(), static_cast<std::size_t>(nc));
+  for (int c = 0; c < nc; ++c) {
+    const Eigen::Vector3d expected = volume_centroid(SHSurface(shapes[c]).geometry(*grids->n_grid));
+    EXPECT_EQ(x[c], expected) << "cell " << c;
+    EXPECT_EQ(spread_over_ranks(world, x[c]), 0.0) << "cell " << c;
+  }
+  if (world.size() > 1) {
+    int unheld = 0;
+    for (int c = 0; c < nc; ++c) unheld += held[c] ? 0 : 1;
+    EXPECT_GT(unheld, 0);  // the NaN shapes were there not to be read
+  }
+  std::vector<Cell> two(2);
+  EXPECT_THROW(volume_centroids(two, *grids->n_grid, holders, world), std::invalid_argument);
+}
+
 // A step's owners on the world's ranks: the cells (listed from the top of the box down) taken
 // along z, the slab axis of the double layer's grid (the box's longest side), in equal counts,
 // and the solve of (10) with the cells in that order and those blocks is one rank's solve,
@@ -947,6 +981,10 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   // Each rank keeps its own cells' rows of U^n; state() gathers every cell's.
   EXPECT_EQ(shared.velocity().rows(), owned_block(3, world).size() * s.velocity.rows() / 3);
   EXPECT_EQ(shared.state().previous_velocity, one.state().previous_velocity);
+  // The centroids at X^{n+1}, each from its mover's shape (the step's owners): one process's.
+  const std::vector<Eigen::Vector3d> centroids = shared.volume_centroids(), alone = one.volume_centroids();
+  ASSERT_EQ(centroids.size(), 3u);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(centroids[c], alone[c]) << "cell " << c;
   on_the_ranks.velocity.row(s.velocity.rows() - 1)(0) = std::nan("");  // the last cell: the last rank's
   try {
     shared.advance(on_the_ranks);
