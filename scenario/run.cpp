@@ -92,7 +92,7 @@ class RunOutput {
   // `centroids`: the cells' volume centroids at the start, where the vessel has branches.
   RunOutput(const Case& c, const Scenario& s, std::optional<long> resume,
             const std::optional<XdmfWriter::Ranks>& frame_ranks, const std::vector<Eigen::Vector3d>& centroids)
-      : case_(c), dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
+      : dir_(c.output.dir), diagnostics_(dir_ / "diagnostics.csv", resume), render_(render_options(c)) {
     if (c.cells) cells_csv_.emplace(dir_ / "cells.csv", resume);
     if (!s.branches.empty()) {
       branches_csv_.emplace(dir_ / "branches.csv", resume);
@@ -106,14 +106,12 @@ class RunOutput {
     if (c.output.vtk) vtk_.emplace(dir_, resume);
   }
 
-  void frame(const CellStepper& stepper, const FlowSolution& s) {
+  // `rows`: cells.csv's rows of the frame (frame_cell_rows).
+  void frame(const CellStepper& stepper, const FlowSolution& s, const std::vector<CellRow>& rows) {
     const std::vector<Surface> surfaces = frame_surfaces(stepper, s);
     if (xdmf_) xdmf_->write_frame(stepper.steps(), stepper.time(), surfaces);
     if (vtk_) vtk_->write_frame(stepper.steps(), stepper.time(), surfaces);
-    if (cells_csv_) {
-      const bool shear = case_.domain.kind == DomainKind::free && case_.domain.background_flow.kind == FlowKind::shear;
-      cells_csv_->write(cell_rows(stepper, s, flow_axis(case_), shear));
-    }
+    if (cells_csv_) cells_csv_->write(rows);
   }
 
   void render(const CellStepper& stepper, const FlowSolution& s) {
@@ -132,7 +130,6 @@ class RunOutput {
   }
 
  private:
-  const Case& case_;
   fs::path dir_;
   DiagnosticsCsv diagnostics_;
   std::optional<CellsCsv> cells_csv_;
@@ -159,10 +156,20 @@ struct Run::State {
   std::optional<Progress> progress;
   std::optional<fs::path> last_checkpoint;
 
+  // cells.csv's rows of a frame, a case with cells (none otherwise). Collective: each rank
+  // measures its own cells.
+  std::vector<CellRow> frame_cell_rows(const CellStepper& stepper, const FlowSolution& s) const {
+    const Case& c = request.c;
+    if (!c.cells) return {};
+    const bool shear = c.domain.kind == DomainKind::free && c.domain.background_flow.kind == FlowKind::shear;
+    return cell_rows(stepper, s, flow_axis(c), shear);
+  }
+
   // A frame of the output: every rank calls it (its part of a shared rbcflow.h5).
   void frame(const CellStepper& stepper, const FlowSolution& s) {
+    const std::vector<CellRow> rows = frame_cell_rows(stepper, s);
     if (output) {
-      output->frame(stepper, s);
+      output->frame(stepper, s, rows);
     } else if (other_frames) {
       other_frames->write_frame(stepper.steps(), stepper.time(), frame_surfaces(stepper, s));
     }

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/surface/inertia_ellipsoid.h"
 #include "geometry/vessel/vessel_mesh.h"
 #include "io/xdmf_writer.h"
+#include "libsolver/stepper/cell_measures.h"
 #include "libsolver/wall/tube_flow.h"
 #include "scenario/derived.h"
 #include "scenario/physical_units.h"
@@ -64,16 +64,10 @@ std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSoluti
 
 std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear) {
   std::vector<CellRow> rows;
-  if (stepper.cells().empty()) return rows;
-  const SHTransform& t = *stepper.grids().n_grid;
-  const int np = t.grid().size();
-  for (std::size_t c = 0; c < stepper.cells().size(); ++c) {
-    const SurfaceGeometry g = stepper.cells()[c].shape.geometry(t);
-    const Eigen::Vector3d centre = volume_centroid(g);
-    const Eigen::Vector3d u =
-        (s.velocity.middleRows(c * np, np).transpose() * g.area_weight) / g.area_weight.sum();
-    const InertiaEllipsoid e = inertia_ellipsoid(g);
-    const Eigen::Vector3d longest = e.axes.col(2);
+  const std::vector<CellMeasures> measures = stepper.cell_measures(s);
+  for (std::size_t c = 0; c < measures.size(); ++c) {
+    const CellMeasures& m = measures[c];
+    const Eigen::Vector3d& longest = m.longest_axis;
     double inclination = 0;
     if (shear) {
       inclination = std::atan2(longest.z(), longest.x());
@@ -82,8 +76,9 @@ std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s
     } else {
       inclination = std::acos(std::min(1.0, std::abs(longest[flow_axis])));
     }
-    rows.push_back({stepper.steps(), stepper.time(), static_cast<int>(c), {centre.x(), centre.y(), centre.z()},
-                    {u.x(), u.y(), u.z()}, enclosed_volume(g), surface_area(g), e.taylor_deformation(), inclination});
+    rows.push_back({stepper.steps(), stepper.time(), static_cast<int>(c),
+                    {m.centroid.x(), m.centroid.y(), m.centroid.z()}, {m.velocity.x(), m.velocity.y(), m.velocity.z()},
+                    m.volume, m.area, m.taylor_deformation, inclination});
   }
   return rows;
 }

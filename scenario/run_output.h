@@ -20,8 +20,9 @@ namespace rbcflow {
 // solved there.
 std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s);
 
-// One row per cell; `flow_axis` for the inclination (signed in the x-z plane of a shear flow
-// along x, otherwise the angle to the axis in [0, pi/2]).
+// One row per cell, each cell's measured by its owner in s.owners (cell_measures.h) and
+// gathered; `flow_axis` for the inclination (signed in the x-z plane of a shear flow along x,
+// otherwise the angle to the axis in [0, pi/2]). Collective: every rank calls it.
 std::vector<CellRow> cell_rows(const CellStepper& stepper, const FlowSolution& s, int flow_axis, bool shear);
 
 // The renders a case asks for ([output] render_*; the flow axis and period for the view and the

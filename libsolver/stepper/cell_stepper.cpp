@@ -17,6 +17,7 @@
 #include "libsolver/parallel/owned_rows.h"
 #include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_centroids.h"
+#include "libsolver/stepper/cell_measures.h"
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 #include "libsolver/stepper/halo_density.h"
@@ -636,6 +637,11 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
 std::vector<Eigen::Vector3d> CellStepper::volume_centroids() const {
   if (cells_.empty()) return {};
   return rbcflow::volume_centroids(cells_, *grids_->n_grid, history_owners_, options_.domain.ranks);
+}
+
+std::vector<CellMeasures> CellStepper::cell_measures(const FlowSolution& s) const {
+  if (cells_.empty()) return {};
+  return rbcflow::cell_measures(cells_, *grids_->n_grid, owned_velocity(s), s.owners, options_.domain.ranks);
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {

@@ -55,6 +55,8 @@ struct CellStepperOptions {
   WallSolveOptions wall_solve;
 };
 
+struct CellMeasures;  // cell_measures.h
+
 struct Cell {
   SHSurface shape;                       // current surface, order N
   std::shared_ptr<const Membrane> membrane;
@@ -174,6 +176,10 @@ class CellStepper {
   // Every cell's volume centroid at X^n, in cell order on every rank, each computed by the rank
   // that moved the cell last (cell_centroids.h); empty without cells. Collective.
   std::vector<Eigen::Vector3d> volume_centroids() const;
+  // Every cell's measures at X^n and U^n of `s` (this stepper's solve(), before advance()), in
+  // cell order on every rank, each computed by its owner in s.owners (cell_measures.h); empty
+  // without cells. Collective.
+  std::vector<CellMeasures> cell_measures(const FlowSolution& s) const;
 
   // The whole state, every cell's velocities gathered from the ranks: collective.
   StepperState state() const;

@@ -4,7 +4,10 @@
 // and triangles; points and fields within TOLERANCE relative to the largest entry of each) and
 // the same diagnostics.csv rows (every column but `seconds`, within TOLERANCE relative to the
 // larger magnitude, the components of a vector (`name_x`, `name_y`, `name_z`) relative to the
-// vector's largest component, or within FLOOR absolute: default 0; runs that sum in another
+// vector's largest component, or within FLOOR absolute: default 0) and, where a run has cells,
+// the same cells.csv rows at the steps and cells both have (every column but `inclination`, the
+// same way: the inclination of a cell whose two longest semi-axes are equal, a red cell at
+// rest, is rounding's choice); runs that sum in another
 // order differ by rounding in columns that are rounding errors themselves, such as
 // max_volume_error ~ 1e-16); prints the largest differences. A NaN against a number (or an empty field
 // against one) is an infinite difference, never dropped; NaN against NaN is no difference. For
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +27,7 @@
 #include "io/xdmf_writer.h"
 
 using namespace rbcflow;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -48,10 +53,10 @@ double field_difference(const std::string& a, const std::string& b, double scale
   return d == 0.0 || std::isinf(d) ? d : d / std::max({std::abs(x), std::abs(y), scale, 1e-300});
 }
 
-// The magnitude a column's entries are compared against in one row of each table: a vector's
+// The magnitude a column's entries are compared against in row rt of t and ru of u: a vector's
 // largest component in either row for the components of a vector (a small lateral component of
 // the pressure gradient moves by the rounding of the whole vector), else 0 (the entries' own).
-double column_scale(const CsvTable& t, const CsvTable& u, std::size_t row, std::size_t k) {
+double column_scale(const CsvTable& t, std::size_t rt, const CsvTable& u, std::size_t ru, std::size_t k) {
   const std::string& name = t.columns[k];
   if (name.size() < 3 || name[name.size() - 2] != '_' || std::string("xyz").find(name.back()) == std::string::npos)
     return 0.0;
@@ -61,8 +66,8 @@ double column_scale(const CsvTable& t, const CsvTable& u, std::size_t row, std::
     const auto it = std::find(t.columns.begin(), t.columns.end(), component);
     if (it == t.columns.end()) return 0.0;
     const std::size_t j = static_cast<std::size_t>(it - t.columns.begin());
-    for (const CsvTable* table : {&t, &u}) {
-      const std::string& field = table->rows[row][j];
+    for (const std::string* f : {&t.rows[rt][j], &u.rows[ru][j]}) {
+      const std::string& field = *f;
       if (!field.empty() && std::isfinite(std::stod(field))) scale = std::max(scale, std::abs(std::stod(field)));
     }
   }
@@ -104,6 +109,66 @@ bool same_frames(const std::string& a, const std::string& b, double tolerance) {
   return ok && worst <= tolerance;
 }
 
+// The difference of row ra of da from row rb of db over every column but `skip`, relative to
+// the larger magnitude (a vector's components to its largest), 0 within floor; the worst
+// column's name goes to `column` when it is worse than `worst`.
+void row_difference(const CsvTable& da, std::size_t ra, const CsvTable& db, std::size_t rb, std::size_t skip,
+                    double floor, double& worst, std::string& column) {
+  for (std::size_t k = 0; k < da.columns.size(); ++k) {
+    if (k == skip || da.rows[ra][k] == db.rows[rb][k]) continue;
+    const double d = field_difference(da.rows[ra][k], db.rows[rb][k], column_scale(da, ra, db, rb, k), floor);
+    if (d > worst) {
+      worst = d;
+      column = da.columns[k];
+    }
+  }
+}
+
+// diagnostics.csv of both directories: the same rows, every column but `seconds` within
+// tolerance.
+bool same_diagnostics(const std::string& a, const std::string& b, double tolerance, double floor) {
+  const CsvTable da = read_csv(a + "/diagnostics.csv"), db = read_csv(b + "/diagnostics.csv");
+  if (da.rows.size() != db.rows.size() || da.columns != db.columns) {
+    std::printf("diagnostics.csv: %zu rows against %zu\n", da.rows.size(), db.rows.size());
+    return false;
+  }
+  double worst = 0;
+  std::string column;
+  for (std::size_t r = 0; r < da.rows.size(); ++r) row_difference(da, r, db, r, da.column("seconds"), floor, worst, column);
+  std::printf("diagnostics.csv: %zu rows, max relative difference %.3e%s\n", da.rows.size(), worst,
+              column.empty() ? "" : (" (" + column + ")").c_str());
+  return worst <= tolerance;
+}
+
+// cells.csv of both directories, as the frames: the rows of the same step and cell in both
+// (one run may have written more frames), every column but `inclination` within tolerance.
+bool same_cell_rows(const std::string& a, const std::string& b, double tolerance, double floor) {
+  if (!fs::exists(a + "/cells.csv") || !fs::exists(b + "/cells.csv")) {
+    std::printf("cells.csv: in one directory only\n");
+    return false;
+  }
+  const CsvTable da = read_csv(a + "/cells.csv"), db = read_csv(b + "/cells.csv");
+  if (da.columns != db.columns) {
+    std::printf("cells.csv: other columns\n");
+    return false;
+  }
+  const std::size_t step = da.column("step"), cell = da.column("cell");
+  std::map<std::pair<std::string, std::string>, std::size_t> in_b;
+  for (std::size_t r = 0; r < db.rows.size(); ++r) in_b[{db.rows[r][step], db.rows[r][cell]}] = r;
+  double worst = 0;
+  std::string column;
+  std::size_t common = 0;
+  for (std::size_t r = 0; r < da.rows.size(); ++r) {
+    const auto it = in_b.find({da.rows[r][step], da.rows[r][cell]});
+    if (it == in_b.end()) continue;
+    ++common;
+    row_difference(da, r, db, it->second, da.column("inclination"), floor, worst, column);
+  }
+  std::printf("cells.csv: %zu rows against %zu, %zu of the same step and cell: max relative difference %.3e%s\n",
+              da.rows.size(), db.rows.size(), common, worst, column.empty() ? "" : (" (" + column + ")").c_str());
+  return common > 0 && worst <= tolerance;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,28 +203,8 @@ int main(int argc, char** argv) {
   if (ka.integer("steps") != kb.integer("steps") || ka.real("time") != kb.real("time")) ok = false;
   ok = same_frames(a, b, tolerance) && ok;
 
-  const CsvTable da = read_csv(a + "/diagnostics.csv"), db = read_csv(b + "/diagnostics.csv");
-  if (da.rows.size() != db.rows.size() || da.columns != db.columns) {
-    std::printf("diagnostics.csv: %zu rows against %zu\n", da.rows.size(), db.rows.size());
-    ok = false;
-  } else {
-    const std::size_t seconds = da.column("seconds");
-    double worst_row = 0;
-    std::string worst_column;
-    for (std::size_t r = 0; r < da.rows.size(); ++r) {
-      for (std::size_t k = 0; k < da.columns.size(); ++k) {
-        if (k == seconds || da.rows[r][k] == db.rows[r][k]) continue;
-        const double d = field_difference(da.rows[r][k], db.rows[r][k], column_scale(da, db, r, k), floor);
-        if (d > worst_row) {
-          worst_row = d;
-          worst_column = da.columns[k];
-        }
-      }
-    }
-    std::printf("diagnostics.csv: %zu rows, max relative difference %.3e%s\n", da.rows.size(), worst_row,
-                worst_column.empty() ? "" : (" (" + worst_column + ")").c_str());
-    ok = ok && worst_row <= tolerance;
-  }
+  ok = same_diagnostics(a, b, tolerance, floor) && ok;
+  if (fs::exists(a + "/cells.csv") || fs::exists(b + "/cells.csv")) ok = same_cell_rows(a, b, tolerance, floor) && ok;
   ok = ok && worst <= tolerance;
   std::printf("%s\n", ok ? "same" : "DIFFERENT");
   return ok ? 0 : 1;

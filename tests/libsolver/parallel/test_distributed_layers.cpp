@@ -27,6 +27,7 @@
 #include "libsolver/spme/spme_plan.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_centroids.h"
+#include "libsolver/stepper/cell_measures.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/collision.h"
 #include "libsolver/stepper/step_slabs.h"
@@ -730,6 +731,48 @@ TEST(CellCentroids, FromTheHoldersShapesAlone) {
   EXPECT_THROW(volume_centroids(two, *grids->n_grid, holders, world), std::invalid_argument);
 }
 
+// The cells' measures of a frame (cell_measures.h): each rank measures the cells it owns (a
+// permutation whose blocks are not the index blocks) from their shapes and its rows of the
+// velocity alone, every other shape here NaN on it, and gathers the others'. Every rank then
+// has every cell's measures, to the bit as one process computes them; a velocity uniform over
+// a cell is its mean velocity.
+TEST(CellMeasures, FromTheOwnersShapesAndRowsAlone) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 7;
+  const auto grids = CellGrids::make(N, 2 * N);
+  const int np = grids->n_grid->grid().size();
+  std::vector<SHCoeffs> shapes = edge_on_column(N, nc, 2.25);
+  std::reverse(shapes.begin(), shapes.end());
+  const CellOwners owners = owners_along({3.0, 6.0, 0.5, 5.0, 1.0, 4.0, 2.0}, 7.0, world.size());
+  std::vector<Cell> cells(nc);
+  Eigen::MatrixXd velocity(nc * np, 3);  // cell order: uniform over each cell
+  for (int c = 0; c < nc; ++c) {
+    cells[c].shape = SHSurface(shapes[c]);
+    velocity.middleRows(c * np, np).rowwise() = Eigen::RowVector3d(0.5 + c, -0.25 * c, 1.0 / (1 + c));
+  }
+  const std::vector<CellMeasures> alone =
+      cell_measures(cells, *grids->n_grid, velocity, owners_by_block(nc, 1), Communicator{});
+  const int first = owners.first[world.rank()], end = owners.first[world.rank() + 1];
+  const Eigen::MatrixXd mine = owners.to_owner_order(velocity, np).middleRows(first * np, (end - first) * np);
+  std::vector<bool> owned(nc, false);
+  for (int k = first; k < end; ++k) owned[owners.order[k]] = true;
+  for (int c = 0; c < nc; ++c)
+    if (!owned[c]) cells[c].shape.coeffs().values().setConstant(std::nan(""));
+  const std::vector<CellMeasures> m = cell_measures(cells, *grids->n_grid, mine, owners, world);
+  ASSERT_EQ(m.size(), static_cast<std::size_t>(nc));
+  for (int c = 0; c < nc; ++c) {
+    EXPECT_EQ(m[c].centroid, alone[c].centroid) << "cell " << c;
+    EXPECT_EQ(m[c].velocity, alone[c].velocity) << "cell " << c;
+    EXPECT_EQ(m[c].longest_axis, alone[c].longest_axis) << "cell " << c;
+    EXPECT_EQ(m[c].volume, alone[c].volume) << "cell " << c;
+    EXPECT_EQ(m[c].area, alone[c].area) << "cell " << c;
+    EXPECT_EQ(m[c].taylor_deformation, alone[c].taylor_deformation) << "cell " << c;
+    EXPECT_NEAR((m[c].velocity - velocity.row(c * np).transpose()).norm(), 0.0, 1e-14) << "cell " << c;
+    EXPECT_EQ(spread_over_ranks(world, m[c].centroid), 0.0) << "cell " << c;
+  }
+  EXPECT_THROW(cell_measures(cells, *grids->n_grid, velocity.topRows(np + 1), owners, world), std::invalid_argument);
+}
+
 // A step's owners on the world's ranks: the cells (listed from the top of the box down) taken
 // along z, the slab axis of the double layer's grid (the box's longest side), in equal counts,
 // and the solve of (10) with the cells in that order and those blocks is one rank's solve,
@@ -966,6 +1009,13 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
   FlowSolution s = one.solve();
   FlowSolution on_the_ranks = s;  // every cell's velocity, with the ranks' owners in free space
   on_the_ranks.owners = owners_by_block(3, world.size());
+  // A frame's measures at X^n, each from its owner's shape and rows of U^n: one process's.
+  const std::vector<CellMeasures> measured = shared.cell_measures(on_the_ranks), measured_alone = one.cell_measures(s);
+  ASSERT_EQ(measured.size(), 3u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(measured[c].velocity, measured_alone[c].velocity) << "cell " << c;
+    EXPECT_EQ(measured[c].taylor_deformation, measured_alone[c].taylor_deformation) << "cell " << c;
+  }
   const StepReport a = one.advance(s), b = shared.advance(on_the_ranks);
   double largest = 0.0;
   for (int c = 0; c < 3; ++c) {
