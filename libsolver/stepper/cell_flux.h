@@ -13,10 +13,10 @@
 
 namespace rbcflow {
 
-// `velocity`: the surface velocity stacked over this rank's block of the cells (owned_block:
-// every cell on one rank), in the point order of `grid`. On several `ranks` each sums its block
-// of the cells and the result is the ranks' sum (the same on every rank; another order of the
-// sum than on one rank).
+// `cells`: this rank's cells (every cell on one rank); `velocity`: their surface velocity,
+// stacked in their order, in the point order of `grid`. On several `ranks` each sums its cells
+// and the result is the ranks' sum (the same on every rank; another order of the sum than on
+// one rank). Collective.
 double cells_volume_flux(const std::vector<SHSurface>& cells, const Eigen::Ref<const Eigen::MatrixXd>& velocity, const SHTransform& grid,
                          int axis, const Communicator& ranks = {});
 

@@ -5,21 +5,18 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "libsolver/parallel/ownership.h"
-
 namespace rbcflow {
 
 double cell_free_layer(const std::vector<SHSurface>& cells, const SHTransform& grid, const TubeSection& tube,
                        double period, const CellFreeLayerBins& bins, const Communicator& ranks) {
-  if (cells.empty()) throw std::invalid_argument("cell_free_layer: no cells");
+  if (ranks.sum(static_cast<long>(cells.size())) == 0) throw std::invalid_argument("cell_free_layer: no cells");
   if (!(bins.slice_length > 0) || bins.sectors < 1 || !(period > 0))
     throw std::invalid_argument("cell_free_layer: the bins and the period must be positive");
   const int a = tube.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   const int slices = std::max(1, static_cast<int>(std::lround(period / bins.slice_length)));
   std::vector<double> edge(static_cast<std::size_t>(slices) * bins.sectors, -1.0);
-  const OwnedRange mine = owned_block(static_cast<int>(cells.size()), ranks);
-  for (int c = mine.begin; c < mine.end; ++c) {
-    const Eigen::MatrixXd x = grid.synthesize(cells[c].coeffs());
+  for (const SHSurface& cell : cells) {
+    const Eigen::MatrixXd x = grid.synthesize(cell.coeffs());
     for (Eigen::Index p = 0; p < x.rows(); ++p) {
       const double du = x(p, u) - tube.axis_point[u], dv = x(p, v) - tube.axis_point[v];
       const double along = x(p, a) - tube.axis_point[a];

@@ -19,9 +19,10 @@ struct CellFreeLayerBins {
   int sectors = 16;
 };
 
-// `period`: the tube's period along its axis. Throws std::invalid_argument without cells or
-// for bins that are not positive. On several `ranks` each bins the points of its block of the
-// cells (owned_block) and the edges are the ranks' largest: the same as on one rank.
+// `cells`: this rank's cells (every cell on one rank); `period`: the tube's period along its
+// axis. On several `ranks` each bins the points of its cells and the edges are the ranks'
+// largest: the same as one rank with every cell. Throws std::invalid_argument where no rank
+// has a cell or for bins that are not positive. Collective.
 double cell_free_layer(const std::vector<SHSurface>& cells, const SHTransform& grid, const TubeSection& tube,
                        double period, const CellFreeLayerBins& bins = {}, const Communicator& ranks = {});
 

@@ -644,11 +644,11 @@ std::vector<CellMeasures> CellStepper::cell_measures(const FlowSolution& s) cons
   return rbcflow::cell_measures(cells_, *grids_->n_grid, owned_velocity(s), s.owners, options_.domain.ranks);
 }
 
-double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const {
+double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& own) const {
   const int a = options_.tube->axis;
   const double radius = options_.tube->radius;
   const double tube_flux = *s.tube_velocity * std::numbers::pi * radius * radius;
-  return cells_volume_flux(s.owners.to_owner_order(shapes), owned_velocity(s), *grids_->n_grid, a, options_.domain.ranks) /
+  return cells_volume_flux(own, owned_velocity(s), *grids_->n_grid, a, options_.domain.ranks) /
          (options_.domain.box->lengths()[a] * tube_flux);
 }
 
@@ -667,17 +667,19 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
-    // The gap, hematocrit and cell-free layer of each rank's block of the cells, reduced over
-    // the ranks.
-    std::vector<SHSurface> shapes;
+    // The gap, hematocrit and cell-free layer of each rank's own cells in the step's products
+    // (it holds their velocities), reduced over the ranks.
+    const int rank = options_.domain.ranks.rank();
+    std::vector<SHSurface> own;
     std::vector<Eigen::MatrixX3d> points;
-    const OwnedRange mine = owned_block(static_cast<int>(cells_.size()), options_.domain.ranks);
-    for (const Cell& c : cells_) shapes.push_back(c.shape);
-    for (int c = mine.begin; c < mine.end; ++c) points.push_back(grids_->n_grid->synthesize(cells_[c].shape.coeffs()));
+    for (int k = s.owners.first[rank]; k < s.owners.first[rank + 1]; ++k) {
+      own.push_back(cells_[s.owners.order[k]].shape);
+      points.push_back(grids_->n_grid->synthesize(own.back().coeffs()));
+    }
     report.min_wall_gap = options_.domain.ranks.min(smallest_wall_distance(*wall_distance_, points));
-    if (s.tube_velocity && options_.tube->whole_period) report.discharge_hematocrit = discharge_hematocrit(s, shapes);
+    if (s.tube_velocity && options_.tube->whole_period) report.discharge_hematocrit = discharge_hematocrit(s, own);
     if (options_.tube && options_.tube->whole_period) {
-      report.cell_free_layer = cell_free_layer(shapes, *grids_->n_grid, *options_.tube,
+      report.cell_free_layer = cell_free_layer(own, *grids_->n_grid, *options_.tube,
                                                options_.domain.box->lengths()[options_.tube->axis], {},
                                                options_.domain.ranks);
     }

@@ -214,8 +214,8 @@ class CellStepper {
   // Collective.
   void migrate_history(const CellOwners& to);
   // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
-  // cells' current shapes.
-  double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& shapes) const;
+  // current shapes `own` of this rank's cells in s.owners, in owner order. Collective.
+  double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& own) const;
   // X^{n+1}, collision removal and the volume constraint (advance() with cells).
   void move_cells(const FlowSolution& s, StepReport& report);
   int points_per_cell() const { return grids_ ? static_cast<int>(grids_->n_grid->grid().size()) : 0; }

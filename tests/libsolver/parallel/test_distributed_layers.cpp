@@ -27,6 +27,8 @@
 #include "libsolver/spme/spme_plan.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_centroids.h"
+#include "libsolver/stepper/cell_flux.h"
+#include "libsolver/stepper/cell_free_layer.h"
 #include "libsolver/stepper/cell_measures.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/collision.h"
@@ -771,6 +773,40 @@ TEST(CellMeasures, FromTheOwnersShapesAndRowsAlone) {
     EXPECT_EQ(spread_over_ranks(world, m[c].centroid), 0.0) << "cell " << c;
   }
   EXPECT_THROW(cell_measures(cells, *grids->n_grid, velocity.topRows(np + 1), owners, world), std::invalid_argument);
+}
+
+// The tube measures of a step (cell_free_layer.h, cell_flux.h) take each rank's own cells:
+// seven cells in a tube of radius 2 along z, dealt to the ranks in turn (cell c to rank
+// c mod ranks), give the cell-free layer of one process with every cell exactly (the edges are
+// the ranks' largest) and the cells' volume flux to rounding (the ranks' sum); a rank's cells
+// alone are not the whole, so the test would see a rank that left the others out.
+TEST(TubeMeasures, EachRankItsOwnCells) {
+  const Communicator world = Communicator::world();
+  const int N = 8, nc = 7;
+  const auto grids = CellGrids::make(N, 2 * N);
+  const int np = grids->n_grid->grid().size();
+  TubeSection tube;
+  tube.axis_point = Eigen::Vector3d(2.25, 2.25, 0.0);
+  tube.radius = 2.0;
+  const double period = 21.0;
+  std::vector<SHSurface> every, mine;
+  Eigen::MatrixXd velocity(nc * np, 3), my_velocity(0, 3);
+  for (int c = 0; c < nc; ++c) {
+    every.emplace_back(edge_on_column(N, nc, 2.25)[c]);
+    velocity.middleRows(c * np, np).rowwise() = Eigen::RowVector3d(0.1 * c, -0.2, 1.0 + 0.5 * c);
+    if (c % world.size() != world.rank()) continue;
+    mine.push_back(every.back());
+    my_velocity.conservativeResize(my_velocity.rows() + np, 3);
+    my_velocity.bottomRows(np) = velocity.middleRows(c * np, np);
+  }
+  const double layer = cell_free_layer(every, *grids->n_grid, tube, period);
+  EXPECT_EQ(cell_free_layer(mine, *grids->n_grid, tube, period, {}, world), layer);
+  const double flux = cells_volume_flux(every, velocity, *grids->n_grid, 2);
+  EXPECT_NEAR(cells_volume_flux(mine, my_velocity, *grids->n_grid, 2, world), flux, 1e-14 * std::abs(flux));
+  if (world.size() > 1) {
+    EXPECT_NE(cells_volume_flux(mine, my_velocity, *grids->n_grid, 2), flux);
+  }
+  EXPECT_THROW(cell_free_layer({}, *grids->n_grid, tube, period, {}, world), std::invalid_argument);
 }
 
 // A step's owners on the world's ranks: the cells (listed from the top of the box down) taken
