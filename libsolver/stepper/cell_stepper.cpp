@@ -459,14 +459,14 @@ FlowSolution CellStepper::solve() const {
   std::optional<HaloDensity> velocity;
   if (nc > 0) velocity.emplace(std::move(s.velocity), owners, np, options_.domain.ranks);
   if (section_meter_) {
-    std::vector<SHSurface> shapes;
-    for (const Cell& c : cells_) shapes.push_back(c.shape);
-    if (!owners.in_cell_order()) shapes = owners.to_owner_order(shapes);
+    std::vector<SHSurface> own;  // the layers' owned cells: owners' block of this rank
+    const int rank = options_.domain.ranks.rank();
+    for (int k = owners.first[rank]; k < owners.first[rank + 1]; ++k) own.push_back(cells_[owners.order[k]].shape);
     DensityHalo bring_densities = [&](const std::vector<int>& halo) {
       bring_traction(halo);
       if (lambda != 1.0) velocity->bring(halo);  // the double layer's density
     };
-    const CellsAtStep cells_now{layers.get(), traction, velocity ? &velocity->density() : nullptr, &shapes,
+    const CellsAtStep cells_now{layers.get(), traction, velocity ? &velocity->density() : nullptr, &own,
                                 nc > 0 ? grids_->n_grid.get() : nullptr, lambda, bring_densities};
     s.section_flux = section_meter_->fluxes(s.mean_velocity, s.wall_force, nc > 0 ? &cells_now : nullptr);
   }

@@ -50,8 +50,10 @@ Eigen::VectorXi inside_cells(const PointField& points, const CellsAtStep& cells,
   Eigen::VectorXd inside = Eigen::VectorXd::Zero(points.rows());
   const SphGrid& grid = cells.grid->grid();
   const OwnedRange& owned = cells.layers->owned();
+  if (static_cast<int>(cells.own_shapes->size()) != owned.size())
+    throw std::logic_error("section fluxes: not the shapes of the layers' own cells");
   for (int c = owned.begin; c < owned.end; ++c) {
-    const SHSurface& shape = (*cells.shapes)[c];
+    const SHSurface& shape = (*cells.own_shapes)[static_cast<std::size_t>(c - owned.begin)];
     const TriangleMesh mesh = shape.triangulate(*cells.grid);
     const Eigen::Vector3d centre = mesh.points.colwise().mean().transpose();
     const double radius = (mesh.points.rowwise() - centre.transpose()).rowwise().norm().maxCoeff();
@@ -121,7 +123,7 @@ int SectionFluxMeter::clearest(int b, const CellLayers* layers) const {
 
 std::vector<double> SectionFluxMeter::fluxes(const Eigen::Vector3d& mean_velocity, const PointField& wall_force,
                                              const CellsAtStep* cells) {
-  const bool with_cells = cells && !cells->shapes->empty();
+  const bool with_cells = cells != nullptr;
   std::vector<Candidate*> chosen;
   int n = 0;
   for (int b = 0; b < num_branches(); ++b) {

@@ -20,12 +20,13 @@
 namespace rbcflow {
 
 // The cells of a step, for section_fluxes: their layers, traction f and surface velocity U
-// stacked over the cells, shapes and the grid the densities live on.
+// stacked over the cells, the shapes of this rank's own cells in the layers (layers->owned(),
+// in that order: every cell on one rank) and the grid the densities live on.
 struct CellsAtStep {
   const CellLayers* layers = nullptr;
   const Eigen::MatrixXd* traction = nullptr;
   const Eigen::MatrixXd* velocity = nullptr;
-  const std::vector<SHSurface>* shapes = nullptr;
+  const std::vector<SHSurface>* own_shapes = nullptr;
   const SHTransform* grid = nullptr;
   double viscosity_ratio = 1.0;
   // Brings the rows of the traction and the velocity the sections' operator reads
