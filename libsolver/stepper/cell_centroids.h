@@ -2,8 +2,8 @@
 // The cells' volume centroids (geometry/surface/sh_surface.h), each computed by the rank that
 // holds the cell's current shape and gathered on every rank: the branch monitor's passages
 // (scenario/branch_monitor.h) and the Python module's centroids, without any rank reading a
-// shape it does not hold or computing every cell's geometry (one rank did, every step: on
-// 10^4 cells a serial second of a step).
+// shape it does not hold or computing every cell's geometry (rank 0 did, every step, a serial
+// cost that grew with the cells).
 #include <Eigen/Core>
 #include <vector>
 
