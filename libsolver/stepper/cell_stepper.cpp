@@ -558,9 +558,10 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   const SHTransform& tn = *grids_->n_grid;
   // X^{n+1} = X^n + dt U^n (eq. 11), or AB2 with U^{n-1}.
   const bool ab2 = options_.scheme == TimeScheme::ab2 && velocities_held() > 0;
-  // Each rank moves, separates (collision.h) and corrects its own cells in the step's products
-  // (s.owners: it holds their velocities), the ranks sharing the shapes after each; a cell that
-  // became invalid on one rank stops every rank (the first one named).
+  // Each rank moves, separates (collision.h: it brings the shapes of the others' cells near its
+  // own) and corrects its own cells in the step's products (s.owners: it holds their
+  // velocities), the ranks sharing the shapes at the end; a cell that became invalid on one
+  // rank stops every rank (the first one named).
   const Communicator& ranks = options_.domain.ranks;
   const CellOwners& owners = s.owners;
   const int first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
@@ -585,10 +586,9 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
     if (!x.allFinite()) first_invalid = std::min(first_invalid, c);
   }
   stop_if_invalid(first_invalid);
-  share_shapes(cells_, owners, ranks);
   if (options_.collision_threshold > 0) {
     // In owner order, so that each rank pushes its own cells (remove_collisions takes
-    // owned_block's blocks of the shapes it is given).
+    // owned_block's blocks of the shapes it is given); the others' are the last step's here.
     std::vector<SHSurface> shapes;
     for (const int c : owners.order) shapes.push_back(cells_[c].shape);
     const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
@@ -608,7 +608,7 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
                                ": the cells moved into each other (or the wall) faster than the removal separates "
                                "them; try a smaller time step or a higher order of the cells");
     }
-    for (int i = 0; i < nc; ++i) cells_[owners.order[i]].shape = std::move(shapes[i]);
+    for (int i = first; i < end; ++i) cells_[owners.order[i]].shape = std::move(shapes[i]);
     report.collision_pairs = k.cell_pairs;
     report.wall_contacts = k.wall_contacts;
     report.collision_displacement = k.max_displacement;

@@ -116,21 +116,20 @@ std::vector<Eigen::Vector3d> close_images(const CellView& a, const CellView& b, 
   return close;
 }
 
-// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero); the pairs,
-// contacts and smallest separation are the ranks' together.
-Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const SHTransform& t,
-            const Eigen::Vector3d& period, const WallDistance* wall, double h_s, const OwnedRange& mine,
-            const Communicator& ranks) {
-  const int n = static_cast<int>(cells.size());
-  Pass pass;
-  pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
-  pass.moved.assign(n, 0);
-  // Each close pair is listed from both sides, so every cell pushes only its own points. The
-  // candidates b of cell a are those whose centres lie within 2 r_max + h_s of a's (minimum
-  // image: an image of b within r_a + r_b + h_s has the minimum image within it too), from
-  // bins of the centres, in ascending order: the pairs of a loop over all, in its order.
-  std::vector<std::vector<Neighbour>> near(n);
+// Every cell's images that may come within h_s of it, from the views' centres and radii alone.
+struct Neighbourhood {
+  std::vector<std::vector<Neighbour>> near;  // by cell
   int pairs = 0;
+};
+
+// Each close pair is listed from both sides, so every cell pushes only its own points. The
+// candidates b of cell a are those whose centres lie within 2 r_max + h_s of a's (minimum
+// image: an image of b within r_a + r_b + h_s has the minimum image within it too), from bins
+// of the centres, in ascending order: the pairs of a loop over all, in its order.
+Neighbourhood find_neighbours(const std::vector<CellView>& views, const Eigen::Vector3d& period, double h_s) {
+  const int n = static_cast<int>(views.size());
+  Neighbourhood h;
+  h.near.resize(n);
   std::vector<Eigen::Vector3d> centres;
   double largest_radius = 0.0;
   for (const CellView& v : views) {
@@ -144,12 +143,38 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
     for (const int b : candidates) {
       if (b < a) continue;
       for (const Eigen::Vector3d& o : close_images(views[a], views[b], a == b, period, h_s)) {
-        near[a].push_back({b, o, pairs});
-        near[b].push_back({a, -o, pairs});
-        ++pairs;
+        h.near[a].push_back({b, o, h.pairs});
+        h.near[b].push_back({a, -o, h.pairs});
+        ++h.pairs;
       }
     }
   }
+  return h;
+}
+
+// The cells near those of `mine` that another rank pushes, ascending: the shapes this rank reads.
+std::vector<int> others_near(const Neighbourhood& h, const OwnedRange& mine) {
+  std::vector<int> others;
+  for (int a = mine.begin; a < mine.end; ++a)
+    for (const Neighbour& nb : h.near[a])
+      if (!mine.contains(nb.b)) others.push_back(nb.b);
+  std::sort(others.begin(), others.end());
+  others.erase(std::unique(others.begin(), others.end()), others.end());
+  return others;
+}
+
+// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero), which read
+// only the shapes of the cells near them; the pairs, contacts and smallest separation are the
+// ranks' together.
+Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const Neighbourhood& neighbourhood,
+            const SHTransform& t, const WallDistance* wall, double h_s, const OwnedRange& mine,
+            const Communicator& ranks) {
+  const int n = static_cast<int>(cells.size());
+  Pass pass;
+  pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
+  pass.moved.assign(n, 0);
+  const std::vector<std::vector<Neighbour>>& near = neighbourhood.near;
+  const int pairs = neighbourhood.pairs;
   // The trees of the cells near this rank's.
   std::vector<char> tree_needed(n, 0);
   for (int a = mine.begin; a < mine.end; ++a)
@@ -290,16 +315,31 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
 
   const int n = static_cast<int>(cells.size());
   const OwnedRange mine = owned_block(n, ranks);
+  std::vector<int> owner(n);
+  for (int r = 0; r < ranks.size(); ++r) {
+    const OwnedRange b = owned_block(n, r, ranks.size());
+    std::fill(owner.begin() + b.begin, owner.begin() + b.end, r);
+  }
+  std::vector<std::vector<std::span<double>>> shapes(n);  // each cell's coefficients
+  for (int i = 0; i < n; ++i)
+    shapes[i] = {std::span<double>(cells[i].coeffs().values().data(), cells[i].coeffs().values().size())};
   CollisionReport report;
   std::vector<SHCoeffs> before(n);
   for (int pass_index = 0;; ++pass_index) {
+    // Each rank its own cells' points, bounding spheres shared (4 numbers a cell), and the
+    // shapes of the others' cells near its own brought from their ranks.
     std::vector<CellView> views(n);
-    for (int i = 0; i < n; ++i) {
+    std::vector<std::vector<std::span<double>>> spheres(n);
+    for (int i = 0; i < n; ++i) spheres[i] = {std::span<double>(views[i].centre.data(), 3), std::span<double>(&views[i].radius, 1)};
+    for (int i = mine.begin; i < mine.end; ++i) {
       views[i].points = grid_transform.synthesize(cells[i].coeffs());
       views[i].centre = views[i].points.colwise().mean().transpose();
       views[i].radius = (views[i].points.rowwise() - views[i].centre.transpose()).rowwise().norm().maxCoeff();
     }
-    const Pass pass = detect(cells, views, grid_transform, period, wall, threshold, mine, ranks);
+    share_blocks(ranks, spheres);
+    const Neighbourhood near = find_neighbours(views, period, threshold);
+    report.shapes_brought += bring_items(ranks, owner, others_near(near, mine), shapes);
+    const Pass pass = detect(cells, views, near, grid_transform, wall, threshold, mine, ranks);
     if (pass_index == 0) {
       report.cell_pairs = pass.cell_pairs;
       report.wall_contacts = pass.wall_contacts;
@@ -319,9 +359,6 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
       if (before[i].order() == 0) before[i] = cells[i].coeffs();
       cells[i].coeffs().values() += fit_push(grid_transform, pass.push[i], cells[i].order()).values();
     }
-    std::vector<std::vector<std::span<double>>> shapes;  // each rank's cells moved, on every rank
-    for (SHSurface& c : cells) shapes.push_back({std::span<double>(c.coeffs().values().data(), c.coeffs().values().size())});
-    share_blocks(ranks, shapes);
     ++report.passes;
   }
   for (int i = mine.begin; i < mine.end; ++i) {

@@ -38,6 +38,7 @@ struct CollisionReport {
   int closest_other = -1;         // cell or wall (-1) it is that close to
   int passes = 0;                 // detection passes that moved something
   bool converged = true;          // no point closer than h_s after the last pass
+  int shapes_brought = 0;         // other ranks' cells' shapes brought to this rank, all passes
 };
 
 // Moves the points of `cells` (grid of `grid_transform`: the paper's N x 2N grid, or a finer
@@ -45,8 +46,13 @@ struct CollisionReport {
 // cell's own order) apart to separation `threshold`. `period`: box sides of the periodic
 // directions, 0 where not periodic. `wall` may be null. Cells with nothing closer than
 // `threshold` are left bit-identical. On several `ranks` each rank finds and fits the pushes of
-// its block of the cells (owned_block), the ranks sharing the pairs' deficits and, after each
-// pass, the moved shapes: the same bits on every rank and as on one.
+// its block of the cells (owned_block) and reads only the shapes of that block and of the
+// cells near it: the blocks' bounding spheres are shared at each pass and the shapes of the
+// others' cells within reach of its own brought from their ranks (share_blocks.h's
+// bring_items), the pairs' deficits summed over the ranks. Only the rank's block need be
+// current on entry (the other shapes are not read before they are brought); on return its block
+// holds the same bits as one rank's run, the other shapes as last brought (the caller shares
+// the blocks), and the report is the same on every rank.
 CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
                                   const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
                                   const Communicator& ranks = {}, int max_iterations = 20);

@@ -13,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <span>
 #include <stdexcept>
 
 #include "geometry/surface/reference_shapes.h"
@@ -24,6 +25,7 @@
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/operators/cell_owners.h"
 #include "libsolver/parallel/owned_rows.h"
+#include "libsolver/parallel/share_blocks.h"
 #include "libsolver/spme/spme_plan.h"
 #include "libsolver/membrane/membrane_law.h"
 #include "libsolver/stepper/cell_centroids.h"
@@ -143,6 +145,46 @@ TEST(Communicator, MinimumAndRanksOnThisMachine) {
   EXPECT_EQ(world.min(-0.5 * world.rank()), -0.5 * (world.size() - 1));
   EXPECT_EQ(world.ranks_on_this_machine(), world.size());
   EXPECT_EQ(Communicator{}.ranks_on_this_machine(), 1);
+}
+
+// bring_items (share_blocks.h): each rank asks for some of the items the others fill (their
+// owners a permutation, not blocks; two arrays an item), and gets exactly those, with the
+// owners' values; the items it did not ask for stay as they were. Asking for an item of its own
+// or one out of range is refused.
+TEST(ShareBlocks, BringItemsOnlyTheItemsAsked) {
+  const Communicator world = Communicator::world();
+  const int n = 9, p = world.size(), me = world.rank();
+  std::vector<int> owner(n);
+  for (int i = 0; i < n; ++i) owner[i] = (7 * i + 3) % p;
+  const auto value = [](int i, int k) { return 100.0 * i + k + 0.25; };
+  std::vector<std::vector<double>> a(n, std::vector<double>(3)), b(n, std::vector<double>(2));
+  std::vector<std::vector<std::span<double>>> items(n);
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) a[i][k] = owner[i] == me ? value(i, k) : std::nan("");
+    for (int k = 0; k < 2; ++k) b[i][k] = owner[i] == me ? value(i, 10 + k) : -1.0;
+    items[i] = {std::span<double>(a[i]), std::span<double>(b[i])};
+  }
+  std::vector<int> needed;  // every other rank's items whose number is even, or next to one of mine
+  for (int i = 0; i < n; ++i) {
+    const bool next_to_mine = (i > 0 && owner[i - 1] == me) || (i + 1 < n && owner[i + 1] == me);
+    if (owner[i] != me && (i % 2 == 0 || next_to_mine)) needed.push_back(i);
+  }
+  EXPECT_EQ(bring_items(world, owner, needed, items), p == 1 ? 0 : static_cast<int>(needed.size()));
+  for (int i = 0; i < n; ++i) {
+    const bool here = owner[i] == me || std::find(needed.begin(), needed.end(), i) != needed.end();
+    for (int k = 0; k < 3; ++k) {
+      if (here) EXPECT_EQ(a[i][k], value(i, k)) << "item " << i;
+      else EXPECT_TRUE(std::isnan(a[i][k])) << "item " << i;
+    }
+    for (int k = 0; k < 2; ++k) EXPECT_EQ(b[i][k], here ? value(i, 10 + k) : -1.0) << "item " << i;
+  }
+  if (p > 1) {
+    int own = 0;
+    while (owner[own] != me) ++own;
+    EXPECT_THROW(bring_items(world, owner, {own}, items), std::invalid_argument);
+    EXPECT_THROW(bring_items(world, owner, {n}, items), std::invalid_argument);
+  }
+  EXPECT_THROW(bring_items(world, {0}, {}, items), std::invalid_argument);
 }
 
 TEST(DistributedLayers, ProductsOnTheRanksEqualOneRank) {
@@ -1320,12 +1362,13 @@ TEST(DistributedStepper, VelocitiesHistoryFollowsItsOwners) {
   EXPECT_EQ(shared.velocity().rows(), static_cast<Eigen::Index>(owned_block(3, world).size()) * np);
 }
 
-// The collision removal on the ranks (collision.h): each rank pushes its block of the cells,
-// the pairs' deficits and the moved shapes shared; the shapes and the report are the same bits
-// on every rank and as on one rank. Four unit spheres at order 12 in a D = 3.5 tube (box
-// 4 x 4 x 8, periodic along it): the first two 0.01 apart, the third 0.05 through the wall,
-// the fourth overlapping the first's periodic image by 0.05 and 0.01 from the third, so that
-// on 2 and 3 ranks pairs cross the ranks' blocks.
+// The collision removal on the ranks (collision.h): each rank pushes its block of the cells
+// from its block's shapes alone (every other shape NaN on entry), bringing those of the cells
+// near them, the pairs' deficits summed; its block and the report are the same bits as on one
+// rank, and so is every shape once the blocks are shared. Four unit spheres at order 12 in a
+// D = 3.5 tube (box 4 x 4 x 8, periodic along it): the first two 0.01 apart, the third 0.05
+// through the wall, the fourth overlapping the first's periodic image by 0.05 and 0.01 from
+// the third, so that on 2 and 3 ranks pairs cross the ranks' blocks.
 TEST(DistributedCollisions, OnTheRanksAsOnOne) {
   const Communicator world = Communicator::world();
   const int order = 12;
@@ -1340,11 +1383,22 @@ TEST(DistributedCollisions, OnTheRanksAsOnOne) {
     one.push_back(s);
   }
   std::vector<SHSurface> shared = one;
+  const OwnedRange mine = owned_block(static_cast<int>(one.size()), world);
+  for (int c = 0; c < static_cast<int>(shared.size()); ++c)
+    if (!mine.contains(c)) shared[c].coeffs().values().setConstant(std::nan(""));
   const CollisionReport a = remove_collisions(one, t, mesh.period, &wall, 0.05);
   const CollisionReport b = remove_collisions(shared, t, mesh.period, &wall, 0.05, world);
-  std::printf("  rank %d: %d pairs, %d wall contacts, %d passes, separation %.5f (cells %d, %d), displacement %.4f\n",
+  std::printf("  rank %d: %d pairs, %d wall contacts, %d passes, separation %.5f (cells %d, %d), displacement %.4f, "
+              "%d shapes brought\n",
               world.rank(), b.cell_pairs, b.wall_contacts, b.passes, b.min_separation, b.closest_cell, b.closest_other,
-              b.max_displacement);
+              b.max_displacement, b.shapes_brought);
+  EXPECT_EQ(a.shapes_brought, 0);
+  // Every rank's block has a neighbour in another's (the pairs 0-3 and 2-3 cross them), and no
+  // rank brings a cell in every pass that is not near its own: at most passes x 2 shapes.
+  if (world.size() > 1) {
+    EXPECT_GT(b.shapes_brought, 0);
+    EXPECT_LE(b.shapes_brought, (b.passes + 1) * 2);
+  }
   EXPECT_EQ(a.cell_pairs, 3);
   EXPECT_EQ(a.wall_contacts, 1);
   EXPECT_EQ(b.cell_pairs, a.cell_pairs);
@@ -1356,10 +1410,13 @@ TEST(DistributedCollisions, OnTheRanksAsOnOne) {
   EXPECT_EQ(b.min_separation, a.min_separation);
   EXPECT_EQ(b.closest_cell, a.closest_cell);
   EXPECT_EQ(b.closest_other, a.closest_other);
-  for (std::size_t c = 0; c < one.size(); ++c) {
+  for (int c = mine.begin; c < mine.end; ++c)
     EXPECT_TRUE(shared[c].coeffs().values() == one[c].coeffs().values()) << "cell " << c;
-    EXPECT_EQ(spread_over_ranks(world, shared[c].coeffs().values()), 0.0);
-  }
+  std::vector<std::vector<std::span<double>>> blocks;
+  for (SHSurface& c : shared) blocks.push_back({std::span<double>(c.coeffs().values().data(), c.coeffs().values().size())});
+  share_blocks(world, blocks);
+  for (std::size_t c = 0; c < one.size(); ++c)
+    EXPECT_TRUE(shared[c].coeffs().values() == one[c].coeffs().values()) << "cell " << c;
 }
 
 // More ranks than cells: a rank that owns none takes part in every product with nothing.
