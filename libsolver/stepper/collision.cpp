@@ -163,12 +163,12 @@ std::vector<int> others_near(const Neighbourhood& h, const OwnedRange& mine) {
   return others;
 }
 
-// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero), which read
-// only the shapes of the cells near them; the pairs, contacts and smallest separation are the
-// ranks' together.
+// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero; owner[c]:
+// cell c's rank), which read only the shapes of the cells near them; the pairs, contacts and
+// smallest separation are the ranks' together.
 Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const Neighbourhood& neighbourhood,
             const SHTransform& t, const WallDistance* wall, double h_s, const OwnedRange& mine,
-            const Communicator& ranks) {
+            const std::vector<int>& owner, const Communicator& ranks) {
   const int n = static_cast<int>(cells.size());
   Pass pass;
   pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
@@ -225,22 +225,50 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   // two see the same (two smooth surfaces), all of it when the other side's grid points find
   // none (a tip against a flat face, between the face's grid points). The shares sum to one,
   // so the pair ends h_s apart, not 2 h_s - d.
-  // Each side's deficit is found by its cell's rank, the other entries zero there: the ranks'
-  // sum is exact.
+  // Each side's deficit is found by its cell's rank and sent to the rank of the other side's
+  // cell where that is another (the entries each rank sends another follow from the shared
+  // neighbourhood, in the same order on both): only the pairs that cross the ranks travel.
   std::vector<double> deficit(2 * static_cast<std::size_t>(pairs), 0.0);  // per pair: first side, second side
-  std::vector<int> sides(pairs, 0);
+  std::vector<int> sides(pairs, 0), first_side_cell(pairs, 0);
   std::vector<std::vector<int>> side_of(n);
   for (int a = 0; a < n; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       const int pair = near[a][k].pair;
       const int side = sides[pair]++;
       side_of[a].push_back(side);
+      if (side == 0) first_side_cell[pair] = a;
       if (!mine.contains(a)) continue;
       for (const Contact& c : contacts[a][k]) deficit[2 * pair + side] = std::max(deficit[2 * pair + side], c.missing);
     }
   }
-  ranks.sum(deficit);
-  std::vector<double> pair_hit(pairs, 0.0);
+  if (ranks.size() > 1) {
+    // The (pair, side) entries cell a's rank sends cell b's for each neighbour of a on another
+    // rank, in the order of a and its neighbours: calls f(entry, a's rank, b's rank).
+    const auto crossing = [&](auto&& f) {
+      for (int a = 0; a < n; ++a)
+        for (std::size_t k = 0; k < near[a].size(); ++k)
+          if (owner[a] != owner[near[a][k].b]) f(2 * near[a][k].pair + side_of[a][k], owner[a], owner[near[a][k].b]);
+    };
+    const std::size_t p = static_cast<std::size_t>(ranks.size());
+    std::vector<std::vector<double>> out(p);
+    std::vector<int> out_counts(p, 0), in_counts(p, 0);
+    std::vector<int> arriving;  // entries in the order they come, rank after rank
+    std::vector<std::vector<int>> arriving_from(p);
+    crossing([&](int entry, int from, int to) {
+      if (from == ranks.rank()) out[static_cast<std::size_t>(to)].push_back(deficit[entry]);
+      if (to == ranks.rank()) arriving_from[static_cast<std::size_t>(from)].push_back(entry);
+    });
+    std::vector<double> sent;
+    for (std::size_t r = 0; r < p; ++r) {
+      sent.insert(sent.end(), out[r].begin(), out[r].end());
+      out_counts[r] = static_cast<int>(out[r].size());
+      arriving.insert(arriving.end(), arriving_from[r].begin(), arriving_from[r].end());
+      in_counts[r] = static_cast<int>(arriving_from[r].size());
+    }
+    std::vector<double> received(arriving.size());
+    ranks.exchange(sent, out_counts, received, in_counts);
+    for (std::size_t i = 0; i < arriving.size(); ++i) deficit[static_cast<std::size_t>(arriving[i])] = received[i];
+  }
   for (int a = mine.begin; a < mine.end; ++a) {
     for (std::size_t k = 0; k < near[a].size(); ++k) {
       if (contacts[a][k].empty()) continue;
@@ -249,9 +277,13 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       const double share = own / (own + other);
       for (const Contact& c : contacts[a][k]) pass.push[a].row(c.point) += share * c.missing * c.normal.transpose();
       pass.moved[a] = 1;
-      pair_hit[pair] = 1.0;
     }
   }
+  // A pair is hit when either side lacks separation (a deficit is positive exactly where its
+  // side has contacts); the rank of its first side's cell counts it.
+  long pairs_hit = 0;
+  for (int pair = 0; pair < pairs; ++pair)
+    if (mine.contains(first_side_cell[pair]) && (deficit[2 * pair] > 0 || deficit[2 * pair + 1] > 0)) ++pairs_hit;
   for (int a = mine.begin; a < mine.end; ++a) {
     if (cell_min[a] < pass.min_separation) {
       pass.min_separation = cell_min[a];
@@ -265,8 +297,7 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   pass.closest_other = static_cast<int>(ranks.min(pass.closest_cell == closest ? pass.closest_other : n));
   pass.closest_cell = closest;
   pass.min_separation = smallest;
-  ranks.sum(pair_hit);
-  pass.cell_pairs = static_cast<int>(std::count_if(pair_hit.begin(), pair_hit.end(), [](double h) { return h > 0; }));
+  pass.cell_pairs = static_cast<int>(ranks.sum(pairs_hit));
   pass.wall_contacts = static_cast<int>(ranks.sum(static_cast<long>(std::count(wall_hit.begin(), wall_hit.end(), 1))));
   return pass;
 }
@@ -339,7 +370,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     share_blocks(ranks, spheres);
     const Neighbourhood near = find_neighbours(views, period, threshold);
     report.shapes_brought += bring_items(ranks, owner, others_near(near, mine), shapes);
-    const Pass pass = detect(cells, views, near, grid_transform, wall, threshold, mine, ranks);
+    const Pass pass = detect(cells, views, near, grid_transform, wall, threshold, mine, owner, ranks);
     if (pass_index == 0) {
       report.cell_pairs = pass.cell_pairs;
       report.wall_contacts = pass.wall_contacts;

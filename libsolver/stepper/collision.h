@@ -49,10 +49,11 @@ struct CollisionReport {
 // its block of the cells (owned_block) and reads only the shapes of that block and of the
 // cells near it: the blocks' bounding spheres are shared at each pass and the shapes of the
 // others' cells within reach of its own brought from their ranks (share_blocks.h's
-// bring_items), the pairs' deficits summed over the ranks. Only the rank's block need be
-// current on entry (the other shapes are not read before they are brought); on return its block
-// holds the same bits as one rank's run, the other shapes as last brought (the caller shares
-// the blocks), and the report is the same on every rank.
+// bring_items), and a pair's deficit on one side sent to the other side's rank where two
+// ranks push its cells. Only the rank's block need be current on entry (the other shapes are
+// not read before they are brought); on return its block holds the same bits as one rank's
+// run, the other shapes as last brought (the caller shares the blocks), and the report is the
+// same on every rank.
 CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransform& grid_transform,
                                   const Eigen::Vector3d& period, const WallDistance* wall, double threshold,
                                   const Communicator& ranks = {}, int max_iterations = 20);
