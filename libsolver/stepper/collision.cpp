@@ -41,7 +41,7 @@ struct CellView {
 };
 
 struct Pass {
-  std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of each cell
+  std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of each cell of the rank's block
   std::vector<char> moved;
   int cell_pairs = 0, wall_contacts = 0;
   double min_separation = std::numeric_limits<double>::infinity();
@@ -163,15 +163,15 @@ std::vector<int> others_near(const Neighbourhood& h, const OwnedRange& mine) {
   return others;
 }
 
-// The pushes of the cells `mine` (pass.push and pass.moved of the others stay zero; owner[c]:
-// cell c's rank), which read only the shapes of the cells near them; the pairs, contacts and
+// The pushes of the cells `mine` (pass.push[a - mine.begin]; pass.moved of the others stays
+// zero; owner[c]: cell c's rank), which read only the shapes of the cells near them; the pairs, contacts and
 // smallest separation are the ranks' together.
 Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const Neighbourhood& neighbourhood,
             const SHTransform& t, const WallDistance* wall, double h_s, const OwnedRange& mine,
             const std::vector<int>& owner, const Communicator& ranks) {
   const int n = static_cast<int>(cells.size());
   Pass pass;
-  pass.push.assign(n, Eigen::MatrixXd::Zero(t.grid().size(), 3));
+  pass.push.assign(static_cast<std::size_t>(mine.size()), Eigen::MatrixXd::Zero(t.grid().size(), 3));
   pass.moved.assign(n, 0);
   const std::vector<std::vector<Neighbour>>& near = neighbourhood.near;
   const int pairs = neighbourhood.pairs;
@@ -214,7 +214,7 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
         cell_min_other[a] = -1;
       }
       if (w.signed_distance < h_s) {
-        pass.push[a].row(p) += (target - w.signed_distance) * w.normal.transpose();
+        pass.push[a - mine.begin].row(p) += (target - w.signed_distance) * w.normal.transpose();
         wall_hit[a] = 1;
         pass.moved[a] = 1;
       }
@@ -275,7 +275,8 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
       const int pair = near[a][k].pair;
       const double own = deficit[2 * pair + side_of[a][k]], other = deficit[2 * pair + 1 - side_of[a][k]];
       const double share = own / (own + other);
-      for (const Contact& c : contacts[a][k]) pass.push[a].row(c.point) += share * c.missing * c.normal.transpose();
+      for (const Contact& c : contacts[a][k])
+        pass.push[a - mine.begin].row(c.point) += share * c.missing * c.normal.transpose();
       pass.moved[a] = 1;
     }
   }
@@ -388,7 +389,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     for (int i = mine.begin; i < mine.end; ++i) {
       if (!pass.moved[i]) continue;
       if (before[i].order() == 0) before[i] = cells[i].coeffs();
-      cells[i].coeffs().values() += fit_push(grid_transform, pass.push[i], cells[i].order()).values();
+      cells[i].coeffs().values() += fit_push(grid_transform, pass.push[i - mine.begin], cells[i].order()).values();
     }
     ++report.passes;
   }
