@@ -41,7 +41,7 @@ struct CellView {
 };
 
 struct Pass {
-  std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of each cell of the rank's block
+  std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of the rank's block's cells
   std::vector<char> moved;
   int cell_pairs = 0, wall_contacts = 0;
   double min_separation = std::numeric_limits<double>::infinity();
@@ -164,8 +164,8 @@ std::vector<int> others_near(const Neighbourhood& h, const OwnedRange& mine) {
 }
 
 // The pushes of the cells `mine` (pass.push[a - mine.begin]; pass.moved of the others stays
-// zero; owner[c]: cell c's rank), which read only the shapes of the cells near them; the pairs, contacts and
-// smallest separation are the ranks' together.
+// zero; owner[c]: cell c's rank), which read only the shapes of the cells near them; the
+// pairs, contacts and smallest separation are the ranks' together.
 Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, const Neighbourhood& neighbourhood,
             const SHTransform& t, const WallDistance* wall, double h_s, const OwnedRange& mine,
             const std::vector<int>& owner, const Communicator& ranks) {
