@@ -51,6 +51,26 @@ OwnedRange owned_cells(int cells, const LayerDomain& domain) {
   return {first[static_cast<std::size_t>(r)], first[static_cast<std::size_t>(r) + 1]};
 }
 
+// The cells whose nodes the layers hold: the owned block and domain.held's halo, or every cell.
+std::vector<int> cells_held(int cells, OwnedRange owned, const LayerDomain& domain) {
+  std::vector<int> held;
+  if (!domain.held) {
+    held.resize(static_cast<std::size_t>(cells));
+    std::iota(held.begin(), held.end(), 0);
+    return held;
+  }
+  const std::vector<int>& halo = domain.held->halo;
+  if (domain.held->spheres.size() != static_cast<std::size_t>(cells))
+    throw std::invalid_argument("CellLayers: LayerDomain::held needs one sphere a cell");
+  for (std::size_t k = 0; k < halo.size(); ++k)
+    if (halo[k] < 0 || halo[k] >= cells || owned.contains(halo[k]) || (k > 0 && halo[k] <= halo[k - 1]))
+      throw std::invalid_argument("CellLayers: LayerDomain::held's halo must be ascending cells not owned");
+  held = halo;
+  for (int c = owned.begin; c < owned.end; ++c) held.push_back(c);
+  std::sort(held.begin(), held.end());
+  return held;
+}
+
 }  // namespace
 
 std::vector<int> CellLayers::owned_first() const {
@@ -69,6 +89,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       domain_(domain),
       grid_cache_(grid_cache),
       owned_(owned_cells(static_cast<int>(cells.size()), domain)),
+      held_(cells_held(static_cast<int>(cells.size()), owned_, domain)),
       num_cells_(static_cast<int>(cells.size())),
       with_double_layer_(with_double_layer) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
@@ -79,25 +100,31 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     single_density_ = single_layer_density;
   }
   ScopedTimer geometry_timer(timings_.geometry);
-  const int nc = num_cells_, np = nodes_per_cell();
+  const int nc = num_cells_, np = nodes_per_cell(), nh = static_cast<int>(held_.size());
+  if (domain_.held) spheres_ = domain_.held->spheres;
+  held_position_.assign(static_cast<std::size_t>(nc), -1);
+  for (int k = 0; k < nh; ++k) held_position_[held_[k]] = k;
+  // Only the held cells' shapes are read.
   cells_.resize(nc);
-  std::vector<SourceNodes> not_owned(nc);
+  std::vector<SourceNodes> not_owned(nh);
 #pragma omp parallel for schedule(dynamic)
-  for (int c = 0; c < nc; ++c) {
+  for (int k = 0; k < nh; ++k) {
+    const int c = held_[k];
     if (owned_.contains(c)) {
       cells_[c] = std::make_shared<const CellQuadratureGeometry>(cells[c], grids_, options);
     } else {
-      not_owned[c] = cell_nodes(cells[c], *grids_);
+      not_owned[k] = cell_nodes(cells[c], *grids_);
     }
   }
-  nodes_.x.resize(nc * np, 3);
-  nodes_.normal.resize(nc * np, 3);
-  nodes_.weight.resize(nc * np);
-  for (int c = 0; c < nc; ++c) {
-    const SourceNodes& n = cells_[c] ? cells_[c]->nodes() : not_owned[c];
-    nodes_.x.middleRows(c * np, np) = n.x;
-    nodes_.normal.middleRows(c * np, np) = n.normal;
-    nodes_.weight.segment(c * np, np) = n.weight;
+  nodes_.x.resize(nh * np, 3);
+  nodes_.normal.resize(nh * np, 3);
+  nodes_.weight.resize(nh * np);
+  for (int k = 0; k < nh; ++k) {
+    const int c = held_[k];
+    const SourceNodes& n = cells_[c] ? cells_[c]->nodes() : not_owned[k];
+    nodes_.x.middleRows(k * np, np) = n.x;
+    nodes_.normal.middleRows(k * np, np) = n.normal;
+    nodes_.weight.segment(k * np, np) = n.weight;
   }
   // The Ewald grids first: the corrections need their xi, and leave the patch nodes within
   // the real-space cutoff (their nearest images) to the real-space sums, which weight those
@@ -126,8 +153,13 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     near_reach = std::max(near_reach, cells_[c]->near_distance() + cells_[c]->mesh_size());
   halo_extent_ = layers_halo_extent(near_reach, single_grid.get(), double_grid.get());
   halo_ = halo_with({});
+  if (!std::includes(held_.begin(), held_.end(), halo_.begin(), halo_.end()))
+    throw std::logic_error("CellLayers: the held cells (LayerDomain::held) do not hold the layers' halo");
   geometry_timer.stop();
   if (single_density_ && bring_density) bring_density(halo_);
+  // The single-layer density at the held rows (read in the build only).
+  Eigen::MatrixXd held_density;
+  const Eigen::MatrixXd* single_held = single_density_ ? &at_held(*single_density_, held_density) : nullptr;
   // The single layer of a given density is applied once, as its corrections are built: they
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
   // of folding them into the plan's pair shares, which would be held through every cell's
@@ -141,17 +173,17 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   Eigen::MatrixXd single_corrections;
   std::vector<Eigen::MatrixXd> near_single(nc);
   const auto apply_now = [&](int c, std::unique_ptr<LayerCorrection>& correction) {
-    const Eigen::MatrixXd block = cell_block(*single_density_, c);
+    const Eigen::MatrixXd block = cell_block(*single_held, c);
     Eigen::MatrixXd out = correction->apply(block, cells_[c]->patch_data(block));
     correction.reset();
     return out;
   };
-  if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nc * np, 3);
+  if (single_density_) single_corrections = Eigen::MatrixXd::Zero(nodes_.size(), 3);
   std::optional<Eigen::MatrixXd> single_regular;  // the regular (Ewald) part of the single layer
   ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
   for (int c = owned_.begin; c < owned_.end; ++c) {
-    const auto targets = cells_[c]->node_targets();
+    const auto targets = cells_[c]->node_targets();  // its own rows: no near_ rows given
     if (with_double_layer) {
       std::tie(self_single_[c], self_double_[c]) =
           LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets, node_shares);
@@ -159,7 +191,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       self_single_[c] = std::make_unique<LayerCorrection>(cells_[c], LayerKernel{Layer::single, xi_single}, targets,
                                                           node_shares[0]);
     }
-    if (single_density_) single_corrections.middleRows(c * np, np) = apply_now(c, self_single_[c]);
+    if (single_density_) single_corrections.middleRows(held_row(c), np) = apply_now(c, self_single_[c]);
   }
   self_timer.stop();
   ScopedTimer near_timer(timings_.near);
@@ -167,8 +199,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   for (int c = owned_.begin; c < owned_.end; ++c) {
     // Nodes of other cells closer than the near distance (nearest periodic image), and the
     // cell's own nodes near another part of its surface.
-    NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, c * np, (c + 1) * np);
-    NearTargets self = find_self_near_targets(*cells_[c], c * np);
+    const int row = static_cast<int>(held_row(c));
+    NearTargets near = find_near_targets(*cells_[c], nodes_.x, domain_.box, row, row + np);
+    NearTargets self = find_self_near_targets(*cells_[c], row);
     near.targets.insert(near.targets.end(), self.targets.begin(), self.targets.end());
     near.rows.insert(near.rows.end(), self.rows.begin(), self.rows.end());
     near_[c].rows = std::move(near.rows);
@@ -194,7 +227,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     // One rank: the nodes are sources and targets (the stencils shared); several: the owned
     // cells' nodes are the real-space sources, every node a target (ewald_plan.h).
     auto plan = [&](std::shared_ptr<const SpmeGrid> grid, Layer layer) {
-      const SourceRows rows{owned_.begin * np, owned_.end * np};
+      const SourceRows rows = owned_nodes();
       // The single layer of a given density folded nothing (its corrections are gone).
       PairShares shares = layer == Layer::single && single_density_ ? PairShares{} : take_folded_shares(layer);
       return owns_all() ? std::make_unique<EwaldPlan>(std::move(grid), nodes_.x, std::move(shares))
@@ -208,7 +241,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     single_plan_->keep_pairs_up_to(single_density_ ? 0 : domain_.max_kept_pairs);
     plans_timer.stop();
     if (single_density_) {
-      single_regular = regular_single_layer(*single_density_);
+      single_regular = regular_single_layer(*single_held);
       single_plan_.reset();
     }
     if (with_double_layer) {
@@ -219,7 +252,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     }
   }
   if (single_density_) {
-    if (!single_regular) single_regular = regular_single_layer(*single_density_);  // free space, or no plan here
+    if (!single_regular) single_regular = regular_single_layer(*single_held);  // free space, or no plan here
     single_part_ = *single_regular + single_corrections;
     single_plan_.reset();
   }
@@ -236,8 +269,40 @@ std::vector<int> coincident_sources(int targets, int first, int n) {
 
 }  // namespace
 
+SourceRows CellLayers::owned_nodes() const {
+  if (owned_.empty()) return {};
+  const Eigen::Index first = held_row(owned_.begin);
+  return {first, first + static_cast<Eigen::Index>(owned_.size()) * nodes_per_cell()};
+}
+
+Eigen::MatrixXd CellLayers::held_rows(const Eigen::MatrixXd& stacked) const {
+  const int np = nodes_per_cell();
+  if (stacked.rows() != static_cast<Eigen::Index>(num_cells_) * np)
+    throw std::invalid_argument("CellLayers::held_rows: not one row a node of every cell");
+  Eigen::MatrixXd held(static_cast<Eigen::Index>(held_.size()) * np, stacked.cols());
+  for (std::size_t k = 0; k < held_.size(); ++k)
+    held.middleRows(static_cast<Eigen::Index>(k) * np, np) = stacked.middleRows(static_cast<Eigen::Index>(held_[k]) * np, np);
+  return held;
+}
+
+Eigen::MatrixXd CellLayers::every_rows(Eigen::MatrixXd held) const {
+  if (held.rows() != nodes_.size()) throw std::invalid_argument("CellLayers::every_rows: not one row a held node");
+  if (holds_all()) return held;
+  const int np = nodes_per_cell();
+  Eigen::MatrixXd every = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(num_cells_) * np, held.cols());
+  for (std::size_t k = 0; k < held_.size(); ++k)
+    every.middleRows(static_cast<Eigen::Index>(held_[k]) * np, np) = held.middleRows(static_cast<Eigen::Index>(k) * np, np);
+  return every;
+}
+
+const Eigen::MatrixXd& CellLayers::at_held(const Eigen::MatrixXd& stacked, Eigen::MatrixXd& gathered) const {
+  if (holds_all()) return stacked;
+  gathered = held_rows(stacked);
+  return gathered;
+}
+
 Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
-  const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
+  const int first = static_cast<int>(owned_nodes().begin), n = owned_.size() * nodes_per_cell();
   if (domain_.box) {
     if (!single_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);  // no cell owned here
     const PointField weighted = f.array().colwise() * nodes_.weight.array();
@@ -249,7 +314,7 @@ Eigen::MatrixXd CellLayers::regular_single_layer(const Eigen::MatrixXd& f) {
 }
 
 Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform) {
-  const int first = owned_.begin * nodes_per_cell(), n = owned_.size() * nodes_per_cell();
+  const int first = static_cast<int>(owned_nodes().begin), n = owned_.size() * nodes_per_cell();
   if (domain_.box) {
     if (uniform) uniform->setZero();
     if (!double_plan_) return Eigen::MatrixXd::Zero(nodes_.size(), 3);
@@ -273,7 +338,8 @@ Eigen::MatrixXd CellLayers::regular_double_layer(const Eigen::MatrixXd& u, Eigen
 
 std::vector<int> CellLayers::halo_with(const std::vector<SlabPlanes>& other_slabs) const {
   if (owns_all()) return {};
-  const int np = nodes_per_cell();
+  if (!spheres_.empty()) return cell_halo(spheres_, owned_, domain_.box, halo_extent_, other_slabs);
+  const int np = nodes_per_cell();  // every cell held
   std::vector<CellSphere> spheres;
   for (int c = 0; c < num_cells_; ++c) spheres.push_back(bounding_sphere(nodes_.x.middleRows(c * np, np)));
   return cell_halo(spheres, owned_, domain_.box, halo_extent_, other_slabs);
@@ -302,15 +368,14 @@ std::vector<int> cell_layers_halo(const std::vector<CellSphere>& spheres, const 
 }
 
 PairShares CellLayers::take_folded_shares(Layer layer) const {
-  const int np = nodes_per_cell();
   // Calls f(cell, target row, patch nodes) for every target of the layer's corrections with
   // folded nodes. Sources are numbered within the owned block (the plans' sources).
-  const int first = owned_.begin * np;
+  const Eigen::Index first = owned_nodes().begin;
   auto for_each_target = [&](auto&& f) {
     for (int c = owned_.begin; c < owned_.end; ++c) {
       const LayerCorrection& self = *(layer == Layer::single ? self_single_ : self_double_)[c];
       for (int t = 0; t < self.num_targets(); ++t)
-        if (!self.folded(t).empty()) f(c, c * np + t, self.folded(t));
+        if (!self.folded(t).empty()) f(c, static_cast<int>(held_row(c)) + t, self.folded(t));
       const NearCorrection& n = near_[c];
       const LayerCorrection* near = (layer == Layer::single ? n.single : n.double_).get();
       if (!near) continue;
@@ -327,7 +392,8 @@ PairShares CellLayers::take_folded_shares(Layer layer) const {
   shares.segments.resize(shares.offsets.back());
   std::vector<std::int64_t> next(shares.offsets.begin(), shares.offsets.end() - 1);
   for_each_target([&](int c, int row, std::span<const PatchNode> nodes) {
-    shares.segments[next[row]++] = {nodes.data(), static_cast<std::int32_t>(nodes.size()), c * np - first};
+    shares.segments[next[row]++] = {nodes.data(), static_cast<std::int32_t>(nodes.size()),
+                                    static_cast<std::int32_t>(held_row(c) - first)};
   });
   return shares;
 }
@@ -340,8 +406,8 @@ int CellLayers::near_targets() const {
   return static_cast<int>(domain_.ranks.sum(n));
 }
 
-Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& stacked, int c) const {
-  return stacked.middleRows(c * nodes_per_cell(), nodes_per_cell());
+Eigen::MatrixXd CellLayers::cell_block(const Eigen::MatrixXd& held, int c) const {
+  return held.middleRows(held_row(c), nodes_per_cell());
 }
 
 Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd& density) {
@@ -356,7 +422,7 @@ Eigen::MatrixXd CellLayers::apply_corrections(Layer layer, const Eigen::MatrixXd
   for (int c = owned_.begin; c < owned_.end; ++c) {
     const Eigen::MatrixXd block = cell_block(density, c);
     const HermiteData data = cells_[c]->patch_data(block);
-    out.middleRows(c * np, np) = (layer == Layer::single ? self_single_[c] : self_double_[c])->apply(block, data);
+    out.middleRows(held_row(c), np) = (layer == Layer::single ? self_single_[c] : self_double_[c])->apply(block, data);
     const NearCorrection& n = near_[c];
     if (!n.rows.empty()) near[c] = (layer == Layer::single ? n.single : n.double_)->apply(block, data);
   }
@@ -372,13 +438,16 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 }
 
 Eigen::MatrixXd CellLayers::single_layer_part(const Eigen::MatrixXd& f) {
-  if (f.rows() != nodes_.size() || f.cols() != 3) throw std::invalid_argument("CellLayers::single_layer: bad density size");
+  if (f.rows() != static_cast<Eigen::Index>(num_cells_) * nodes_per_cell() || f.cols() != 3)
+    throw std::invalid_argument("CellLayers::single_layer: bad density size");
   if (single_part_) {
     if (&f != single_density_)
       throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
-    return *single_part_;
+    return every_rows(*single_part_);
   }
-  return regular_single_layer(f) + apply_corrections(Layer::single, f);
+  Eigen::MatrixXd gathered;
+  const Eigen::MatrixXd& held = at_held(f, gathered);
+  return every_rows(regular_single_layer(held) + apply_corrections(Layer::single, held));
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
@@ -388,10 +457,13 @@ Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
 }
 
 Eigen::MatrixXd CellLayers::double_layer_part(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform) {
-  if (u.rows() != nodes_.size() || u.cols() != 3) throw std::invalid_argument("CellLayers::double_layer: bad density size");
+  if (u.rows() != static_cast<Eigen::Index>(num_cells_) * nodes_per_cell() || u.cols() != 3)
+    throw std::invalid_argument("CellLayers::double_layer: bad density size");
   if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
   if (uniform) uniform->setZero();
-  return regular_double_layer(u, uniform) + apply_corrections(Layer::double_, u);
+  Eigen::MatrixXd gathered;
+  const Eigen::MatrixXd& held = at_held(u, gathered);
+  return every_rows(regular_double_layer(held, uniform) + apply_corrections(Layer::double_, held));
 }
 
 std::vector<int> CellLayers::density_rows() const {
@@ -404,7 +476,9 @@ std::vector<int> CellLayers::density_rows() const {
   }
   for (int i = owned_.begin * np; i < owned_.end * np; ++i) rows.push_back(i);
   if (double_plan_) {
-    for (const Eigen::Index i : double_plan_->density_rows()) rows.push_back(static_cast<int>(i));
+    // The plan's rows are held rows.
+    for (const Eigen::Index i : double_plan_->density_rows())
+      rows.push_back(held_[static_cast<std::size_t>(i / np)] * np + static_cast<int>(i % np));
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   }
@@ -412,7 +486,7 @@ std::vector<int> CellLayers::density_rows() const {
 }
 
 void CellLayers::report_memory(MemoryReport& report) const {
-  report.add("every cell's nodes (all ranks)",
+  report.add("the held cells' nodes",
              matrix_bytes(nodes_.x) + matrix_bytes(nodes_.normal) + matrix_bytes(nodes_.weight));
   std::size_t geometry = 0;
   for (const auto& c : cells_)

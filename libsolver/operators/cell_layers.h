@@ -12,9 +12,12 @@
 // corrections.
 // Node data are stacked cell by cell: row c * nodes_per_cell + p.
 // On several ranks (LayerDomain::ranks) each rank builds the corrections of the cells it owns
-// (a block of them: LayerDomain::owned_first, cell_owners.h) and sums only their nodes as sources, at every target; a product is
-// the sum of the ranks' parts (Communicator::sum), the same on every rank. The cells it does
-// not own it holds as nodes only (positions, normals, weights).
+// (a block of them: LayerDomain::owned_first, cell_owners.h) and sums only their nodes as
+// sources; a product is the sum of the ranks' parts (Communicator::sum), the same on every rank.
+// The cells it does not own it holds as nodes only (positions, normals, weights), and only
+// those of its halo where the step names them (LayerDomain::held): its part is zero at every
+// other cell's nodes and reads no density there (cell_halo.h). Products take and return every
+// cell's rows all the same.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -62,6 +65,14 @@ RealSpaceUse double_layer_real_space(std::int64_t max_kept_pairs, double toleran
 // operator calls it at the same point. Empty: the density is whole on every rank.
 using DensityHalo = std::function<void(const std::vector<int>& halo)>;
 
+// The cells a rank holds in a step's layers besides its own: the step's halo (ascending
+// positions in the layers' order: cell_layers_halo, which must hold the layers' own halo) and
+// every cell's sphere.
+struct HeldCells {
+  std::vector<int> halo;
+  std::vector<CellSphere> spheres;
+};
+
 struct LayerDomain {
   std::optional<PeriodicBox> box;  // empty: free space
   double ewald_tolerance = 1e-6;
@@ -71,6 +82,10 @@ struct LayerDomain {
   // The cells' owners (cell_owners.h): rank r owns cells owned_first[r] .. owned_first[r + 1] - 1
   // (ranks + 1 entries, from 0 to the number of cells); empty: owned_block's.
   std::vector<int> owned_first{};
+  // The cells besides the owned block whose nodes the layers hold, with every cell's sphere
+  // (cell_sphere, in the layers' order) from which their halo is taken; empty: every cell's
+  // nodes, and the spheres from them.
+  std::optional<HeldCells> held{};
 };
 
 // The grid of a periodic domain's products of `nodes` cell nodes: the double layer's
@@ -106,7 +121,17 @@ class CellLayers {
 
   int num_cells() const { return num_cells_; }
   int nodes_per_cell() const { return grids_->n_grid->grid().size(); }
-  const SourceNodes& nodes() const { return nodes_; }  // stacked
+  // The cells whose nodes this rank holds (the owned and the held halo, or every cell), ascending.
+  const std::vector<int>& held_cells() const { return held_; }
+  bool holds_all() const { return static_cast<int>(held_.size()) == num_cells_; }
+  // The held cells' nodes, stacked in held_cells()'s order (every cell's on one rank).
+  const SourceNodes& nodes() const { return nodes_; }
+  // The owned block's rows of nodes() (contiguous: the held cells are ascending).
+  SourceRows owned_nodes() const;
+  // Rows of every cell (stacked in the layers' order) at the held cells' rows of nodes(), and
+  // back (zero at the cells not held).
+  Eigen::MatrixXd held_rows(const Eigen::MatrixXd& stacked) const;
+  Eigen::MatrixXd every_rows(Eigen::MatrixXd held) const;
   // The cells whose corrections this rank builds; only they have a quadrature geometry.
   const OwnedRange& owned() const { return owned_; }
   std::vector<int> owned_first() const;  // every rank's first owned cell, and the number of cells
@@ -117,8 +142,8 @@ class CellLayers {
   bool has_double_layer() const { return with_double_layer_; }
   int near_targets() const;  // nearly-singular (target, source cell) pairs, of all ranks
   const CellLayersTimings& build_timings() const { return timings_; }
-  // What the step's cell operator holds on this rank (common/memory_report.h): "every cell's
-  // nodes (all ranks)", "cell geometry" (the owned and halo cells'), "self corrections: ...",
+  // What the step's cell operator holds on this rank (common/memory_report.h): "the held
+  // cells' nodes", "cell geometry" (the owned and halo cells'), "self corrections: ...",
   // "near corrections: ...", "cell Ewald single/double: ...".
   void report_memory(MemoryReport& report) const;
 
@@ -154,37 +179,46 @@ class CellLayers {
     std::unique_ptr<LayerCorrection> single, double_;
     std::vector<int> rows;  // stacked target rows
   };
+  // Below, node data are the held cells' rows (nodes()'s order).
   Eigen::MatrixXd apply_corrections(Layer layer, const Eigen::MatrixXd& density);
   // The regular sums (SPME + real space, or direct in free space) of the owned cells' nodes
-  // as sources, at every node: this rank's part.
+  // as sources, at every held node: this rank's part.
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f);
   Eigen::MatrixXd regular_double_layer(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
-  // The owned cells' rows of stacked node data.
+  // The owned cells' rows of held node data.
   template <class Matrix>
-  auto owned_rows(const Matrix& stacked) const {
-    return stacked.middleRows(owned_.begin * nodes_per_cell(), owned_.size() * nodes_per_cell());
+  auto owned_rows(const Matrix& held) const {
+    return held.middleRows(owned_nodes().begin, owned_.size() * nodes_per_cell());
   }
   bool owns_all() const { return owned_.size() == num_cells(); }
+  // The first row of held cell c in nodes() (c held).
+  Eigen::Index held_row(int c) const { return static_cast<Eigen::Index>(held_position_[c]) * nodes_per_cell(); }
+  // `stacked` (every cell's rows) at the held rows: itself where every cell is held, else
+  // gathered into `gathered`.
+  const Eigen::MatrixXd& at_held(const Eigen::MatrixXd& stacked, Eigen::MatrixXd& gathered) const;
   // The patch nodes the layer's corrections left to the real-space sum, by target row, as
   // segments of the corrections' folded nodes (which therefore live as long as the plans).
   PairShares take_folded_shares(Layer layer) const;
-  Eigen::MatrixXd cell_block(const Eigen::MatrixXd& stacked, int c) const;
+  Eigen::MatrixXd cell_block(const Eigen::MatrixXd& held, int c) const;
 
   std::shared_ptr<const CellGrids> grids_;
   LayerDomain domain_;
   SpmeGridCache* grid_cache_;
   OwnedRange owned_;
+  std::vector<int> held_;           // held_cells()
+  std::vector<int> held_position_;  // of each cell in held_, or -1
+  std::vector<CellSphere> spheres_;  // every cell's (LayerDomain::held), or empty: from the nodes
   std::vector<int> halo_;
   HaloExtent halo_extent_;  // what the halo is taken from (halo_with)
   int num_cells_ = 0;
   std::vector<std::shared_ptr<const CellQuadratureGeometry>> cells_;  // null where not owned
-  SourceNodes nodes_;
+  SourceNodes nodes_;  // of the held cells
   std::vector<std::unique_ptr<LayerCorrection>> self_single_, self_double_;
   std::vector<NearCorrection> near_;  // per source cell
   std::unique_ptr<EwaldPlan> single_plan_, double_plan_;
   // With a single_layer_density: that density (read only while this is built, then only its
-  // address compared) and this rank's part of its single layer (the corrections and the
-  // single-layer plan above are then empty).
+  // address compared) and this rank's part of its single layer at the held rows (the
+  // corrections and the single-layer plan above are then empty).
   const Eigen::MatrixXd* single_density_ = nullptr;
   std::optional<Eigen::MatrixXd> single_part_;
   bool with_double_layer_ = true;

@@ -20,13 +20,14 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
                                        const Eigen::MatrixXd* single_layer_density, const DensityHalo& bring_density)
     : layers_(layers), points_(points) {
   if (single_layer_density) {
-    if (single_layer_density->rows() != layers.nodes().size() || single_layer_density->cols() != 3)
+    if (single_layer_density->rows() != static_cast<Eigen::Index>(layers.num_cells()) * layers.nodes_per_cell() ||
+        single_layer_density->cols() != 3)
       throw std::invalid_argument("CellLayersAtPoints: the single-layer density must be (cell nodes x 3)");
     single_density_ = single_layer_density;
   }
   const LayerDomain& domain = layers.domain();
   const int nc = layers.num_cells();
-  const long ns = layers.nodes().size();
+  const long ns = static_cast<long>(nc) * layers.nodes_per_cell();  // every cell's nodes
   const OwnedRange& owned = layers.owned();
   const int np = layers.nodes_per_cell();
   const bool with_double = layers.has_double_layer();
@@ -36,8 +37,8 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
   std::array<NodeShares, 2> node_shares{};
   if (domain.box) {
     // The grid chosen for all the cells' nodes; the owned cells' nodes are this rank's
-    // real-space sources (ewald_plan.h). A rank without cells takes part in the transforms of
-    // a grid split over the ranks.
+    // real-space sources (ewald_plan.h), the held ones those that spread into its slab. A rank
+    // without cells takes part in the transforms of a grid split over the ranks.
     auto plan = [&](EwaldKernel kernel, double& xi, NodeShares& shares) -> std::unique_ptr<EwaldPlan> {
       auto grid = cell_layers_at_points_grid(domain, kernel, ns, points_.rows(), layers.grid_cache());
       xi = grid->parameters().xi;
@@ -47,8 +48,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
       // No kept pair coefficients: a step applies each layer here once (the single layer in
       // the build, the double layer in (12)), but for the first step's start sweeps; kept, they
       // would be filled once and held at the step's peak for nothing.
-      auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_,
-                                           SourceRows{owned.begin * np, owned.end * np});
+      auto p = std::make_unique<EwaldPlan>(std::move(grid), layers.nodes().x, points_, layers.owned_nodes());
       p->keep_pairs_up_to(0);
       return p;
     };
@@ -87,14 +87,14 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
 Eigen::MatrixXd CellLayersAtPoints::regular_single_layer(const Eigen::MatrixXd& f) const {
   if (layers_.domain().box) {
     if (!single_plan_) return Eigen::MatrixXd::Zero(points_.rows(), 3);  // no cell owned here
-    return single_plan_->single_layer(f.array().colwise() * layers_.nodes().weight.array());
+    return single_plan_->single_layer(layers_.held_rows(f).array().colwise() * layers_.nodes().weight.array());
   }
   return regular_layer_sum(owned_sources(), owned_rows(f), LayerKernel{Layer::single, 0.0}, points_);
 }
 
 SourceNodes CellLayersAtPoints::owned_sources() const {
   const SourceNodes& nodes = layers_.nodes();
-  return {owned_rows(nodes.x), owned_rows(nodes.weight), owned_rows(nodes.normal)};
+  return {owned_nodes(nodes.x), owned_nodes(nodes.weight), owned_nodes(nodes.normal)};
 }
 
 CellLayersAtPoints::~CellLayersAtPoints() = default;
@@ -134,8 +134,7 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
 }
 
 Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) const {
-  const SourceNodes& nodes = layers_.nodes();
-  if (f.rows() != nodes.size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
+  if (f.rows() != every_node_rows() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
   if (single_part_) {
     if (&f != single_density_)
       throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
@@ -146,16 +145,16 @@ Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) 
 
 Eigen::MatrixXd CellLayersAtPoints::double_layer_part(const Eigen::MatrixXd& u) const {
   const SourceNodes& nodes = layers_.nodes();
-  if (u.rows() != nodes.size() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
+  if (u.rows() != every_node_rows() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
   if (!layers_.has_double_layer()) throw std::logic_error("CellLayersAtPoints::double_layer: built without the double layer");
   Eigen::MatrixXd v;
   if (layers_.domain().box) {
     v = Eigen::MatrixXd::Zero(points_.rows(), 3);
     if (double_plan_) {
-      const PointField q = u.array().colwise() * nodes.weight.array();
+      const PointField q = layers_.held_rows(u).array().colwise() * nodes.weight.array();
       v = double_plan_->double_layer(q, nodes.normal);
-      const PointField owned_q = owned_rows(q), owned_normals = owned_rows(nodes.normal);
-      v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_rows(nodes.x), owned_q, owned_normals,
+      const PointField owned_q = owned_nodes(q), owned_normals = owned_nodes(nodes.normal);
+      v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_nodes(nodes.x), owned_q, owned_normals,
                                               layers_.nodes_per_cell());
     }
   } else {

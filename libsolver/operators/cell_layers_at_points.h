@@ -56,10 +56,19 @@ class CellLayersAtPoints {
   Eigen::MatrixXd corrections(Layer layer, const Eigen::MatrixXd& density) const;
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f) const;  // this rank's part
   SourceNodes owned_sources() const;  // the nodes of the cells this rank owns
+  // The owned cells' rows of every cell's stacked rows (a density) ...
   template <class Matrix>
   auto owned_rows(const Matrix& stacked) const {
     return stacked.middleRows(layers_.owned().begin * layers_.nodes_per_cell(),
                               layers_.owned().size() * layers_.nodes_per_cell());
+  }
+  // ... and of the held cells' (the layers' nodes, CellLayers::nodes).
+  template <class Matrix>
+  auto owned_nodes(const Matrix& held) const {
+    return held.middleRows(layers_.owned_nodes().begin, layers_.owned().size() * layers_.nodes_per_cell());
+  }
+  Eigen::Index every_node_rows() const {
+    return static_cast<Eigen::Index>(layers_.num_cells()) * layers_.nodes_per_cell();
   }
 
   const CellLayers& layers_;

@@ -200,6 +200,7 @@ FlowSolution CellStepper::solve() const {
   std::optional<HaloDensity> step_traction;
   std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
   std::vector<int> step_halo;           // the cells this rank reads or adds to besides its own (positions in owner order)
+  std::vector<CellSphere> owner_spheres;  // the cells' spheres in owner order (several ranks)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
@@ -226,11 +227,11 @@ FlowSolution CellStepper::solve() const {
                                            static_cast<bool>(section_meter_), section_points},
                              grid_cache_.get());
     if (options_.domain.ranks.size() > 1) {
-      std::vector<CellSphere> in_owner_order(nc);
-      for (int k = 0; k < nc; ++k) in_owner_order[k] = spheres[owners.order[k]];
+      owner_spheres.resize(nc);
+      for (int k = 0; k < nc; ++k) owner_spheres[k] = spheres[owners.order[k]];
       LayerDomain owned_domain = options_.domain;
       owned_domain.owned_first = owners.first;
-      step_halo = cell_layers_halo(in_owner_order, *grids_, owned_domain, options_.quadrature, lambda != 1.0,
+      step_halo = cell_layers_halo(owner_spheres, *grids_, owned_domain, options_.quadrature, lambda != 1.0,
                                    grid_cache_.get(), other_slabs);
     }
     std::vector<SHCoeffs> shapes(nc);
@@ -256,6 +257,8 @@ FlowSolution CellStepper::solve() const {
     membrane_timer.stop();
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
+    // The layers hold the nodes of the step's halo besides their own, not every cell's.
+    if (options_.domain.ranks.size() > 1) domain.held = HeldCells{step_halo, std::move(owner_spheres)};
     step_traction.emplace(std::move(owned), owners, np, options_.domain.ranks);
     traction = &step_traction->density();
     bring_traction = step_traction->bringer();
@@ -327,17 +330,21 @@ FlowSolution CellStepper::solve() const {
       if (wall_) {
         // Each rank evaluates the wall's near field and real-space sum at its own cells' nodes
         // and the smooth part on its slab of the grid; the ranks' parts add up in the solve.
-        const OwnedRange& owned = layers->owned();
+        // The targets are the held cells' nodes (the step's halo holds every cell its part reaches).
         if (!wall_at_cells) {
           ScopedTimer timer(timing.wall_at_cells_build);
-          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x, TargetRows{owned.begin * np, owned.end * np},
-                                                   options_.domain.ranks));
+          const SourceRows owned = layers->owned_nodes();
+          wall_at_cells.emplace(wall_->operator_at(layers->nodes().x, TargetRows{owned.begin, owned.end},
+                                                   options_.domain.ranks, static_cast<long>(nc) * np));
         }
         ScopedTimer timer(timing.wall_at_cells);
-        wall_velocity_part = WallCoupling::velocity_at(*wall_at_cells, s.wall_force);
+        wall_velocity_part = layers->every_rows(WallCoupling::velocity_at(*wall_at_cells, s.wall_force));
       }
     } else {
-      for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(layers->nodes().x.row(r)));
+      // Free space: every cell is held (a rank's part reaches every node).
+      const SourceNodes& nodes = layers->nodes();
+      if (!layers->holds_all()) throw std::logic_error("CellStepper: free-space layers that do not hold every cell");
+      for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(nodes.x.row(r)));
     }
     if (!work_arrays_->keeping()) release_heap_memory();  // what the builds freed
     work_arrays_->keep(true);

@@ -13,7 +13,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
                                   const Eigen::MatrixXd* background_part) {
   const double lam = viscosity_ratio, pi = std::numbers::pi;
   if (!(lam > 0)) throw std::invalid_argument("solve_cell_velocity: viscosity ratio must be positive");
-  const Eigen::Index total = layers.nodes().size();
+  const Eigen::Index total = static_cast<Eigen::Index>(layers.num_cells()) * layers.nodes_per_cell();
   if (background.rows() != total || background.cols() != 3 ||
       (background_part && (background_part->rows() != total || background_part->cols() != 3)))
     throw std::invalid_argument("solve_cell_velocity: background is not one row a node");

@@ -99,7 +99,7 @@ int SectionFluxMeter::clearest(int b, const CellLayers* layers) const {
   if (!layers || candidates.size() == 1) return 0;
   // Each rank measures the clearance of its own cells' nodes; the least over the ranks.
   const int np = layers->nodes_per_cell();
-  const auto nodes = layers->nodes().x.middleRows(layers->owned().begin * np, layers->owned().size() * np);
+  const auto nodes = layers->nodes().x.middleRows(layers->owned_nodes().begin, layers->owned().size() * np);
   int best = 0;
   double best_clearance = -1;
   for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {

@@ -68,8 +68,9 @@ WallOperator WallCoupling::operator_at(const PointField& points, long chosen_for
                       chosen_for_points);
 }
 
-WallOperator WallCoupling::operator_at(const PointField& points, TargetRows rows, const Communicator& ranks) const {
-  return WallOperator(elements_, points, rows, box_, ewald_tolerance_, grid_cache_.get(), ranks);
+WallOperator WallCoupling::operator_at(const PointField& points, TargetRows rows, const Communicator& ranks,
+                                       long all_points) const {
+  return WallOperator(elements_, points, rows, box_, ewald_tolerance_, grid_cache_.get(), ranks, all_points);
 }
 
 std::shared_ptr<const SpmeGrid> WallCoupling::grid_at(long targets, const Communicator& ranks) const {

@@ -47,8 +47,10 @@ class WallCoupling {
   // as WallOperator's chosen_for_targets (one rank's share of the points).
   WallOperator operator_at(const PointField& points, long chosen_for_points = 0) const;
   // One rank's part of the operator at every point of the ranks (WallOperator's TargetRows
-  // constructor): the near field and real space at its `rows`, the smooth part on its slab.
-  WallOperator operator_at(const PointField& points, TargetRows rows, const Communicator& ranks) const;
+  // constructor): the near field and real space at its `rows`, the smooth part on its slab;
+  // `all_points` as that constructor's all_targets.
+  WallOperator operator_at(const PointField& points, TargetRows rows, const Communicator& ranks,
+                           long all_points = 0) const;
   // The grid of that operator at `targets` points (WallOperator::grid_at_rows).
   std::shared_ptr<const SpmeGrid> grid_at(long targets, const Communicator& ranks) const;
   static PointField velocity_at(WallOperator& at_points, const PointField& force);

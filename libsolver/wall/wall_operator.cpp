@@ -73,7 +73,8 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
 }
 
 WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
-                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks)
+                           const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks,
+                           long all_targets)
     : elements_(std::move(elements)),
       targets_(targets),
       target_rows_(rows),
@@ -84,7 +85,8 @@ WallOperator::WallOperator(std::shared_ptr<const WallElements> elements, const P
                                 std::to_string(rows.end) + ") of " + std::to_string(targets.rows()));
   near_ = near_field(*elements_, targets_.middleRows(rows.begin, rows.end - rows.begin));
   for (const auto& [t, q] : near_.coincident) targets_.row(rows.begin + t) = elements_->points.row(q);
-  ewald_.emplace(grid_at_rows(grid_cache, ewald_tolerance, box, elements_->points.rows(), targets_.rows(), ranks_),
+  if (all_targets == 0) all_targets = targets_.rows();
+  ewald_.emplace(grid_at_rows(grid_cache, ewald_tolerance, box, elements_->points.rows(), all_targets, ranks_),
                  wrapped(elements_->points, box), wrapped(targets_, box), rows);
   // Applied once a step (the wall's velocity at the cells), but in the first step's start
   // sweeps: kept pair coefficients would be filled once and held for nothing.

@@ -68,9 +68,12 @@ class WallOperator {
   // target on its slab of the grid (chosen for all the targets; split over `ranks` where the
   // build can, else at its rows only). Products give every target's row; the ranks' sum is the
   // whole operator's product. Each product computes its real-space pairs (none are kept: a
-  // step applies it once).
+  // step applies it once). `all_targets` (0: the targets' rows), the count the grid is chosen
+  // for, where `targets` are only those this rank's part can reach (the held cells' nodes,
+  // cell_layers.h).
   WallOperator(std::shared_ptr<const WallElements> elements, const PointField& targets, TargetRows rows,
-               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks);
+               const PeriodicBox& box, double ewald_tolerance, SpmeGridCache* grid_cache, Communicator ranks,
+               long all_targets = 0);
   // The grid that constructor takes for `wall_points` wall nodes at `targets` targets: known
   // before the operator is built (the slabs of a step's halo). Collective, as the constructor.
   static std::shared_ptr<const SpmeGrid> grid_at_rows(SpmeGridCache* grid_cache, double ewald_tolerance,

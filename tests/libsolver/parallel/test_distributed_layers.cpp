@@ -1055,6 +1055,46 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
     EXPECT_GT(ranks_reading_halo, 0);
     EXPECT_GT(halo_rows_written, 0);
   }
+  // Layers that hold only the owned and the step's halo cells (LayerDomain::held; the others'
+  // shapes NaN: never read) give every product of the layers, of the layers at the wall and of
+  // the wall at their nodes as the layers holding every cell, on the same ranks: the same sums
+  // in the same order, to rounding (measured: 0).
+  LayerDomain held_domain = shared;
+  held_domain.held = HeldCells{halo, spheres};
+  std::vector<SHCoeffs> held_shapes = cells;
+  for (int c = 0; c < nc; ++c)
+    if (!owned.contains(c) && !std::binary_search(halo.begin(), halo.end(), c))
+      held_shapes[static_cast<std::size_t>(c)].values().setConstant(std::nan(""));
+  CellLayers held(held_shapes, grids, held_domain, {}, true, &cache);
+  const int held_cells = static_cast<int>(held.held_cells().size());
+  EXPECT_EQ(held_cells, owned.size() + static_cast<int>(halo.size()));
+  EXPECT_EQ(held.nodes().size(), static_cast<Eigen::Index>(held_cells) * np);
+  EXPECT_EQ(held.halo(), layers.halo());
+  EXPECT_EQ(held.density_rows(), layers.density_rows());
+  // Relative to the part held by all (a rank's part can be zero everywhere).
+  auto relative = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return (a - b).norm() / std::max(b.norm(), 1e-300);
+  };
+  Eigen::RowVector3d uniform, held_uniform;
+  const double single_change = relative(held.single_layer_part(f), layers.single_layer_part(f));
+  const Eigen::MatrixXd double_part = layers.double_layer_part(f, &uniform);
+  const double double_change = relative(held.double_layer_part(f, &held_uniform), double_part);
+  CellLayersAtPoints held_at_wall(held, wall->wall.surface.points);
+  const double at_wall_single = relative(held_at_wall.single_layer_part(f), at_wall.single_layer_part(f));
+  const double at_wall_double = relative(held_at_wall.double_layer_part(f), at_wall.double_layer_part(f));
+  const SourceRows held_owned = held.owned_nodes();
+  WallOperator wall_at_held(wall, held.nodes().x, TargetRows{held_owned.begin, held_owned.end}, box, 1e-6, &cache, world,
+                            static_cast<long>(nc) * np);
+  const double wall_change =
+      relative(held.every_rows(wall_at_held.apply(smooth_density(wall->wall.surface.points))), u);
+  std::printf("  rank %d: %d of %d cells held; changes: layers %.2e %.2e, at the wall %.2e %.2e, wall at them %.2e\n",
+              world.rank(), held_cells, nc, single_change, double_change, at_wall_single, at_wall_double, wall_change);
+  for (const double change : {single_change, double_change, at_wall_single, at_wall_double, wall_change})
+    EXPECT_LE(change, 1e-14);
+  EXPECT_EQ(held_uniform, uniform);
+  if (world.size() > 1 && rank_slab(wall_at_cells.grid())) {
+    EXPECT_LT(world.sum(static_cast<long>(held_cells)), static_cast<long>(world.size()) * nc);
+  }
 }
 
 // advance() on the ranks (cell_stepper.h): each rank moves and corrects its own cells in the
