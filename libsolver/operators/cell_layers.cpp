@@ -183,7 +183,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   ScopedTimer self_timer(timings_.self);
 #pragma omp parallel for schedule(dynamic)
   for (int c = owned_.begin; c < owned_.end; ++c) {
-    const auto targets = cells_[c]->node_targets();  // its own rows: no near_ rows given
+    const auto targets = cells_[c]->node_targets();
     if (with_double_layer) {
       std::tie(self_single_[c], self_double_[c]) =
           LayerCorrection::single_and_double(cells_[c], xi_single, xi_double, targets, node_shares);
@@ -225,7 +225,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
   if (domain_.box && (!owned_.empty() || single_grid->distributed())) {
     ScopedTimer plans_timer(timings_.geometry);
     // One rank: the nodes are sources and targets (the stencils shared); several: the owned
-    // cells' nodes are the real-space sources, every node a target (ewald_plan.h).
+    // cells' nodes are the real-space sources, every held node a target (ewald_plan.h).
     auto plan = [&](std::shared_ptr<const SpmeGrid> grid, Layer layer) {
       const SourceRows rows = owned_nodes();
       // The single layer of a given density folded nothing (its corrections are gone).
