@@ -459,11 +459,16 @@ Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {
 Eigen::MatrixXd CellLayers::double_layer_part(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform) {
   if (u.rows() != static_cast<Eigen::Index>(num_cells_) * nodes_per_cell() || u.cols() != 3)
     throw std::invalid_argument("CellLayers::double_layer: bad density size");
+  Eigen::MatrixXd gathered;
+  return every_rows(held_double_layer_part(at_held(u, gathered), uniform));
+}
+
+Eigen::MatrixXd CellLayers::held_double_layer_part(const Eigen::MatrixXd& u_held, Eigen::RowVector3d* uniform) {
+  if (u_held.rows() != nodes_.size() || u_held.cols() != 3)
+    throw std::invalid_argument("CellLayers::double_layer: bad density size");
   if (!has_double_layer()) throw std::logic_error("CellLayers::double_layer: built without the double layer");
   if (uniform) uniform->setZero();
-  Eigen::MatrixXd gathered;
-  const Eigen::MatrixXd& held = at_held(u, gathered);
-  return every_rows(regular_double_layer(held, uniform) + apply_corrections(Layer::double_, held));
+  return regular_double_layer(u_held, uniform) + apply_corrections(Layer::double_, u_held);
 }
 
 std::vector<int> CellLayers::density_rows() const {

@@ -161,6 +161,9 @@ class CellLayers {
   // (3) of its sources, is returned there instead of added to every row: the part is then zero
   // at the nodes beyond the real-space cutoff and the near distance of its cells and off its slab.
   Eigen::MatrixXd double_layer_part(const Eigen::MatrixXd& u, Eigen::RowVector3d* uniform = nullptr);
+  // double_layer_part of a density given at the held rows (nodes()'s order), at the held rows:
+  // no vector of every cell's rows on the way (GMRES's products, cell_velocity.h).
+  Eigen::MatrixXd held_double_layer_part(const Eigen::MatrixXd& u_held, Eigen::RowVector3d* uniform = nullptr);
   // The rows of u that double_layer_part reads, ascending: its cells' and, on a grid split over
   // the ranks, the nodes whose B-spline stencils reach its slab (all rows on one rank).
   std::vector<int> density_rows() const;

@@ -1,6 +1,7 @@
 #include "owned_rows.h"
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 
@@ -21,7 +22,7 @@ OwnedRows::OwnedRows(int cells, int nodes_per_cell, const Communicator& ranks)
     : OwnedRows(block_firsts(cells, ranks.size()), nodes_per_cell, ranks) {}
 
 OwnedRows::OwnedRows(const std::vector<int>& first_cell, int nodes_per_cell, const Communicator& ranks)
-    : ranks_(ranks) {
+    : ranks_(ranks), nodes_per_cell_(nodes_per_cell) {
   const std::size_t p = static_cast<std::size_t>(ranks.size());
   bool valid = first_cell.size() == p + 1 && first_cell.front() == 0;
   for (std::size_t r = 0; valid && r < p; ++r) valid = first_cell[r] <= first_cell[r + 1];
@@ -138,12 +139,82 @@ void OwnedRows::read_only(const std::vector<int>& needed) {
   read_rows_.assign(static_cast<std::size_t>(p), {});
   for (int i : needed) {
     if (mine_.contains(i)) continue;
-    int r = 0;
-    while (!blocks_[r].contains(i)) ++r;
+    const int r = owner_of_row(i);
     if (read_rows_[r].empty() || read_rows_[r].back() != i) read_rows_[r].push_back(i);
   }
   send_rows_ = items_read_by(ranks_, read_rows_);
   read_all_ = false;
+  check_read_rows_held();
+}
+
+int OwnedRows::owner_of_row(int i) const {
+  const auto after = std::upper_bound(blocks_.begin(), blocks_.end(), i,
+                                      [](int row, const OwnedRange& b) { return row < b.end; });
+  return static_cast<int>(after - blocks_.begin());
+}
+
+Eigen::Index OwnedRows::held_row(int i) const {
+  const int c = i / nodes_per_cell_;
+  const auto at = std::lower_bound(held_.begin(), held_.end(), c);
+  if (at == held_.end() || *at != c) return -1;
+  return static_cast<Eigen::Index>(at - held_.begin()) * nodes_per_cell_ + i % nodes_per_cell_;
+}
+
+void OwnedRows::check_read_rows_held() const {
+  if (held_.empty() || read_all_) return;
+  for (const std::vector<int>& of_rank : read_rows_)
+    for (const int i : of_rank)
+      if (held_row(i) < 0) throw std::invalid_argument("OwnedRows: a row read is not among the held cells' rows");
+}
+
+void OwnedRows::hold(std::vector<int> cells) {
+  const int np = nodes_per_cell_;
+  const bool ascending = std::adjacent_find(cells.begin(), cells.end(), std::greater_equal<>()) == cells.end();
+  if (!ascending || (!cells.empty() && (cells.front() < 0 || cells.back() * np >= total_)))
+    throw std::invalid_argument("OwnedRows::hold: the cells must be ascending positions of the cells");
+  held_ = std::move(cells);
+  if (mine_.empty()) {
+    held_own_ = 0;
+  } else {
+    held_own_ = held_row(mine_.begin);
+    if (held_own_ < 0 || held_row(mine_.end - 1) != held_own_ + mine_.size() - 1)
+      throw std::invalid_argument("OwnedRows::hold: this rank's own cells must be among the held cells");
+  }
+  check_read_rows_held();
+}
+
+Eigen::MatrixXd OwnedRows::gather_read_held(const Eigen::MatrixXd& mine) const {
+  if (mine.rows() != mine_.size() || mine.cols() != 3) throw std::invalid_argument("OwnedRows::gather_read: not this rank's rows");
+  Eigen::MatrixXd held = Eigen::MatrixXd::Zero(held_rows(), 3);
+  if (read_all_) {  // every held row from its owner
+    const Eigen::MatrixXd all = gather(mine);
+    for (std::size_t k = 0; k < held_.size(); ++k)
+      held.middleRows(static_cast<Eigen::Index>(k) * nodes_per_cell_, nodes_per_cell_) =
+          all.middleRows(static_cast<Eigen::Index>(held_[k]) * nodes_per_cell_, nodes_per_cell_);
+    return held;
+  }
+  held.middleRows(held_own_, mine_.size()) = mine;
+  if (ranks_.size() == 1) return held;
+  rows_received_ += exchange_read(ranks_, send_rows_, read_rows_, [&](int i, int c) -> double& { return held(held_row(i), c); });
+  return held;
+}
+
+Eigen::MatrixXd OwnedRows::sum_mine_held(const Eigen::MatrixXd& part) const {
+  if (part.rows() != held_rows() || part.cols() != 3) throw std::invalid_argument("OwnedRows::sum_mine: not the held rows");
+  Eigen::MatrixXd sum = part.middleRows(held_own_, mine_.size());
+  const int p = ranks_.size(), np = nodes_per_cell_;
+  if (p == 1) return sum;
+  // As sum_mine: each other rank's rows that are not zero, ascending.
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(p));
+  for (std::size_t k = 0; k < held_.size(); ++k) {
+    const int first = held_[k] * np, r = owner_of_row(first);
+    if (r == ranks_.rank()) continue;
+    for (int j = 0; j < np; ++j)
+      if (!part.row(static_cast<Eigen::Index>(k) * np + j).isZero(0.0)) rows[r].push_back(first + j);
+  }
+  rows_received_ += send_and_add(ranks_, rows, [&](int i, int c) { return part(held_row(i), c); },
+                                 [&](int i, int c, double v) { sum(i - mine_.begin, c) += v; });
+  return sum;
 }
 
 Eigen::MatrixXd OwnedRows::gather_read(const Eigen::MatrixXd& mine) const {

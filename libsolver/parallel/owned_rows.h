@@ -41,9 +41,29 @@ class OwnedRows {
   // Rows this rank has received from the others in gather_read and sum_mine so far.
   long rows_received() const { return rows_received_; }
 
+  // The held layout: the rows of `cells` (ascending positions in the cells' order, this rank's
+  // own among them, and those of read_only's rows), stacked in that order, as a rank's layers
+  // hold them (CellLayers::held_cells). Not collective.
+  void hold(std::vector<int> cells);
+  Eigen::Index held_rows() const { return static_cast<Eigen::Index>(held_.size()) * nodes_per_cell_; }
+  // gather_read into the held layout (held_rows() x 3): this rank's rows and read_only's, zero
+  // at the other held rows; no matrix of every row on the way. Collective.
+  Eigen::MatrixXd gather_read_held(const Eigen::MatrixXd& mine) const;
+  // sum_mine of parts given in the held layout (each rank its own, held_rows() x 3): the same
+  // rows travel, added in the same order, so the same bits as sum_mine of the parts at every row.
+  Eigen::MatrixXd sum_mine_held(const Eigen::MatrixXd& part) const;
+
  private:
+  int owner_of_row(int i) const;
+  // Row i's row in the held layout, or -1 when its cell is not held.
+  Eigen::Index held_row(int i) const;
+  void check_read_rows_held() const;
+
   Communicator ranks_;
   int total_ = 0;
+  int nodes_per_cell_ = 0;
+  std::vector<int> held_;              // hold()'s cells, ascending
+  Eigen::Index held_own_ = 0;          // the first own row in the held layout
   OwnedRange mine_;                    // rows
   std::vector<OwnedRange> blocks_;     // every rank's rows
   std::vector<int> counts_;            // every rank's values: 3 per row

@@ -19,9 +19,10 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     throw std::invalid_argument("solve_cell_velocity: background is not one row a node");
   // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product brings the
   // rows of the density this rank reads (its cells' and those its slab of the grid spreads)
-  // from their owners, and each rank receives only its rows of the sum of the ranks' parts,
-  // from the ranks whose parts reach them. The parts' uniform term is summed apart. The
-  // right-hand side arrives the same way: each rank's part of N f and of the background.
+  // from their owners into the rows the layers hold, and each rank receives only its rows of
+  // the sum of the ranks' parts, from the ranks whose parts reach them. The parts' uniform term
+  // is summed apart. The right-hand side arrives the same way: each rank's part of N f and of
+  // the background.
   const Communicator& ranks = layers.domain().ranks;
   OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), ranks);
   const Eigen::Index n = rows.rows();
@@ -42,7 +43,11 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     if (image) *image = s.velocity;
     return s;
   }
-  if (ranks.size() > 1) rows.read_only(layers.density_rows());
+  if (ranks.size() > 1) {
+    // The products in the layers' held layout: no vector of every cell's rows in an iteration.
+    rows.hold(layers.held_cells());
+    rows.read_only(layers.density_rows());
+  }
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const Eigen::Map<const Eigen::MatrixXd> u(v.data(), n, 3);
@@ -51,7 +56,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
       return Eigen::Map<const Eigen::VectorXd>(Au.data(), Au.size());
     }
     Eigen::RowVector3d uniform;
-    Eigen::MatrixXd Ku = rows.sum_mine(layers.double_layer_part(rows.gather_read(u), &uniform));
+    Eigen::MatrixXd Ku = rows.sum_mine_held(layers.held_double_layer_part(rows.gather_read_held(u), &uniform));
     ranks.sum(uniform);
     Ku.rowwise() += uniform;
     const Eigen::MatrixXd Au = u - c * Ku;

@@ -380,6 +380,63 @@ TEST(OwnedRows, ReadOnlyTheRowsReadAndSumOnlyTheRowsThatAreNotZero) {
   EXPECT_THROW(rows.read_only({13, 0}), std::invalid_argument);
 }
 
+// The held layout (OwnedRows::hold): the rows of some cells, this rank's own among them, in
+// the cells' order. Reading into it and summing from it give that layout's rows of gather_read
+// and the same sum as sum_mine of the parts at every row, with the same rows travelling, and no
+// other. Small integers: exact.
+TEST(OwnedRows, TheHeldLayoutReadsAndSumsAsEveryRow) {
+  const Communicator world = Communicator::world();
+  const int me = world.rank(), cells = 7, np = 2;
+  const OwnedRange mine = owned_block(cells, world);
+  std::vector<int> held{0};
+  for (int c = std::max(mine.begin, 1); c < mine.end; ++c) held.push_back(c);
+  if (held.back() != 6) held.push_back(6);
+  Eigen::MatrixXd all(cells * np, 3);
+  for (Eigen::Index i = 0; i < all.size(); ++i) all.data()[i] = static_cast<double>(i % 89 + 1);
+  auto at_held = [&](const Eigen::MatrixXd& every) {
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(held.size()) * np, 3);
+    for (std::size_t k = 0; k < held.size(); ++k)
+      out.middleRows(static_cast<Eigen::Index>(k) * np, np) = every.middleRows(held[k] * np, np);
+    return out;
+  };
+  OwnedRows every(cells, np, world), in_held(cells, np, world);
+  in_held.hold(held);
+  EXPECT_EQ(in_held.held_rows(), static_cast<Eigen::Index>(held.size()) * np);
+  // Before read_only: every held row from its owner.
+  EXPECT_EQ(in_held.gather_read_held(in_held.mine(all)), at_held(all));
+  std::vector<int> needed{1, 13};
+  if (!mine.empty()) needed.push_back(mine.begin * np);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  every.read_only(needed);
+  in_held.read_only(needed);
+  const long before = in_held.rows_received();
+  EXPECT_EQ(in_held.gather_read_held(in_held.mine(all)), at_held(every.gather_read(every.mine(all))));
+  EXPECT_EQ(in_held.rows_received() - before, every.rows_received());
+  // Each rank's part: its rank + 1 at row 1 (cell 0) and at its own first row, zero elsewhere.
+  Eigen::MatrixXd part = Eigen::MatrixXd::Zero(cells * np, 3);
+  part.row(1).setConstant(me + 1);
+  if (!mine.empty()) part.row(mine.begin * np).array() += me + 1;
+  const long summed_before = every.rows_received(), held_before = in_held.rows_received();
+  EXPECT_EQ(in_held.sum_mine_held(at_held(part)), every.sum_mine(part));
+  EXPECT_EQ(in_held.rows_received() - held_before, every.rows_received() - summed_before);
+  EXPECT_THROW(in_held.sum_mine_held(part.topRows(2)), std::invalid_argument);
+  OwnedRows bad(cells, np, world);
+  EXPECT_THROW(bad.hold({6, 0}), std::invalid_argument);
+  EXPECT_THROW(bad.hold({0, 7}), std::invalid_argument);
+  if (!mine.empty() && mine.begin > 0) {
+    EXPECT_THROW(bad.hold({0}), std::invalid_argument);  // without this rank's own cells
+  }
+  // A row read outside the held cells: cell 3 (rows 6, 7), held here only where this rank owns it.
+  // read_only is collective: every rank calls it; the check comes after the exchange.
+  bad.hold(held);
+  if (std::binary_search(held.begin(), held.end(), 3)) {
+    EXPECT_NO_THROW(bad.read_only({6}));
+  } else {
+    EXPECT_THROW(bad.read_only({6}), std::invalid_argument);
+  }
+}
+
 // Node vectors split in an order of the nodes (a permutation, cut into the ranks' segments in
 // rank order): each rank's segment lists its nodes in that order, a sum reaches it as its
 // segment, a gather puts every node back in its place. Small integers: the sums are exact.
@@ -1092,6 +1149,17 @@ TEST(DistributedLayers, TheWallsOperatorsStayWithinTheStepHalo) {
   for (const double change : {single_change, double_change, at_wall_single, at_wall_double, wall_change})
     EXPECT_LE(change, 1e-14);
   EXPECT_EQ(held_uniform, uniform);
+  // The velocity of (10) with GMRES's products in the held layout (cell_velocity.cpp): the same
+  // iterations and velocity as with the layers holding every cell.
+  const Eigen::MatrixXd background = smooth_density(layers.nodes().x + layers.nodes().normal);
+  const VelocitySolve by_all = solve_cell_velocity(layers, f, 5.0, background, 1e-10, 100);
+  const VelocitySolve by_held = solve_cell_velocity(held, f, 5.0, background, 1e-10, 100);
+  ASSERT_TRUE(by_all.gmres.converged);
+  EXPECT_EQ(by_held.gmres.iterations, by_all.gmres.iterations);
+  const double velocity_change = relative(by_held.velocity, by_all.velocity);
+  std::printf("  rank %d: velocity of (10) in %d iterations, change %.2e\n", world.rank(), by_all.gmres.iterations,
+              velocity_change);
+  EXPECT_LE(velocity_change, 1e-14);
   if (world.size() > 1 && rank_slab(wall_at_cells.grid())) {
     EXPECT_LT(world.sum(static_cast<long>(held_cells)), static_cast<long>(world.size()) * nc);
   }
