@@ -145,7 +145,8 @@ int main(int argc, char** argv) {
       last_wall_received = s.wall_nodes_received;
       last_wall_iterations = s.gmres_wall;
       last_iterations = s.gmres_cells;
-      last_nodes = s.traction.rows();
+      if (!stepper->cells().empty())  // every cell's nodes
+        last_nodes = static_cast<long>(stepper->cells().size()) * stepper->grids().n_grid->grid().size();
       last_owned = s.owned_cells;
       last_halo = s.halo_cells;
       std::fflush(stdout);

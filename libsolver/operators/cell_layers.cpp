@@ -94,9 +94,9 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
       with_double_layer_(with_double_layer) {
   if (cells.empty()) throw std::invalid_argument("CellLayers: no cells");
   if (single_layer_density) {
-    if (single_layer_density->rows() != static_cast<Eigen::Index>(cells.size()) * nodes_per_cell() ||
+    if (single_layer_density->rows() != static_cast<Eigen::Index>(held_.size()) * nodes_per_cell() ||
         single_layer_density->cols() != 3)
-      throw std::invalid_argument("CellLayers: the single-layer density must be (nodes x 3)");
+      throw std::invalid_argument("CellLayers: the single-layer density must be (held nodes x 3)");
     single_density_ = single_layer_density;
   }
   ScopedTimer geometry_timer(timings_.geometry);
@@ -157,9 +157,7 @@ CellLayers::CellLayers(const std::vector<SHCoeffs>& cells, std::shared_ptr<const
     throw std::logic_error("CellLayers: the held cells (LayerDomain::held) do not hold the layers' halo");
   geometry_timer.stop();
   if (single_density_ && bring_density) bring_density(halo_);
-  // The single-layer density at the held rows (read in the build only).
-  Eigen::MatrixXd held_density;
-  const Eigen::MatrixXd* single_held = single_density_ ? &at_held(*single_density_, held_density) : nullptr;
+  const Eigen::MatrixXd* single_held = single_density_;  // at the held rows, read in the build only
   // The single layer of a given density is applied once, as its corrections are built: they
   // remove their patch nodes' shares themselves (node entries, freed with the correction) instead
   // of folding them into the plan's pair shares, which would be held through every cell's
@@ -438,16 +436,22 @@ Eigen::MatrixXd CellLayers::single_layer(const Eigen::MatrixXd& f) {
 }
 
 Eigen::MatrixXd CellLayers::single_layer_part(const Eigen::MatrixXd& f) {
+  if (single_part_) return every_rows(held_single_layer_part(f));
   if (f.rows() != static_cast<Eigen::Index>(num_cells_) * nodes_per_cell() || f.cols() != 3)
     throw std::invalid_argument("CellLayers::single_layer: bad density size");
-  if (single_part_) {
-    if (&f != single_density_)
-      throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
-    return every_rows(*single_part_);
-  }
   Eigen::MatrixXd gathered;
-  const Eigen::MatrixXd& held = at_held(f, gathered);
-  return every_rows(regular_single_layer(held) + apply_corrections(Layer::single, held));
+  return every_rows(held_single_layer_part(at_held(f, gathered)));
+}
+
+Eigen::MatrixXd CellLayers::held_single_layer_part(const Eigen::MatrixXd& f_held) {
+  if (single_part_) {
+    if (&f_held != single_density_)
+      throw std::logic_error("CellLayers::single_layer: built for one single-layer density, given another");
+    return *single_part_;
+  }
+  if (f_held.rows() != nodes_.size() || f_held.cols() != 3)
+    throw std::invalid_argument("CellLayers::single_layer: bad density size");
+  return regular_single_layer(f_held) + apply_corrections(Layer::single, f_held);
 }
 
 Eigen::MatrixXd CellLayers::double_layer(const Eigen::MatrixXd& u) {

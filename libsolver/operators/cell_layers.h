@@ -17,7 +17,8 @@
 // The cells it does not own it holds as nodes only (positions, normals, weights), and only
 // those of its halo where the step names them (LayerDomain::held): its part is zero at every
 // other cell's nodes and reads no density there (cell_halo.h). Products take and return every
-// cell's rows all the same.
+// cell's rows, or, the held_ ones, the held cells' rows only (the layout of a step's densities:
+// CellLayersAtPoints, stepper/halo_density.h).
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -106,7 +107,8 @@ class CellLayers {
  public:
   // with_double_layer = false skips everything the double layer needs (lambda = 1). SPME grids
   // come from `grid_cache` when given (kept across steps; it must outlive this object).
-  // single_layer_density (stacked nodes x 3), when given: the single layer of that density, the
+  // single_layer_density (at the held rows, held_cells()'s nodes x 3: every cell's where every
+  // cell is held), when given: the single layer of that density, the
   // only one a time step needs (its traction, in every sweep of the step), is computed here,
   // each cell's single-layer corrections applied as soon as they are built and freed, and the
   // single-layer Ewald plan freed after its one product: kept, they were a third of a step's
@@ -128,10 +130,15 @@ class CellLayers {
   const SourceNodes& nodes() const { return nodes_; }
   // The owned block's rows of nodes() (contiguous: the held cells are ascending).
   SourceRows owned_nodes() const;
+  // The first row of held cell c in nodes() (c held).
+  Eigen::Index held_row(int c) const { return static_cast<Eigen::Index>(held_position_[c]) * nodes_per_cell(); }
   // Rows of every cell (stacked in the layers' order) at the held cells' rows of nodes(), and
   // back (zero at the cells not held).
   Eigen::MatrixXd held_rows(const Eigen::MatrixXd& stacked) const;
   Eigen::MatrixXd every_rows(Eigen::MatrixXd held) const;
+  // `stacked` (every cell's rows) at the held rows: itself where every cell is held, else
+  // gathered into `gathered`.
+  const Eigen::MatrixXd& at_held(const Eigen::MatrixXd& stacked, Eigen::MatrixXd& gathered) const;
   // The cells whose corrections this rank builds; only they have a quadrature geometry.
   const OwnedRange& owned() const { return owned_; }
   std::vector<int> owned_first() const;  // every rank's first owned cell, and the number of cells
@@ -147,7 +154,8 @@ class CellLayers {
   // "near corrections: ...", "cell Ewald single/double: ...".
   void report_memory(MemoryReport& report) const;
 
-  // Throws std::logic_error for another density than the one given to the constructor, if one was.
+  // Every cell's rows of f, or, where the layers were built for a single-layer density, that
+  // density itself (held rows): std::logic_error for another matrix.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f);
   // This rank's part of single_layer(f), at every node: its cells' corrections and nodes as
   // sources, its slab of the grid; zero at the nodes beyond the real-space cutoff and the near
@@ -164,6 +172,9 @@ class CellLayers {
   // double_layer_part of a density given at the held rows (nodes()'s order), at the held rows:
   // no vector of every cell's rows on the way (GMRES's products, cell_velocity.h).
   Eigen::MatrixXd held_double_layer_part(const Eigen::MatrixXd& u_held, Eigen::RowVector3d* uniform = nullptr);
+  // single_layer_part at the held rows, of a density at the held rows (the constructor's, if
+  // one was given: std::logic_error for another matrix).
+  Eigen::MatrixXd held_single_layer_part(const Eigen::MatrixXd& f_held);
   // The rows of u that double_layer_part reads, ascending: its cells' and, on a grid split over
   // the ranks, the nodes whose B-spline stencils reach its slab (all rows on one rank).
   std::vector<int> density_rows() const;
@@ -194,11 +205,6 @@ class CellLayers {
     return held.middleRows(owned_nodes().begin, owned_.size() * nodes_per_cell());
   }
   bool owns_all() const { return owned_.size() == num_cells(); }
-  // The first row of held cell c in nodes() (c held).
-  Eigen::Index held_row(int c) const { return static_cast<Eigen::Index>(held_position_[c]) * nodes_per_cell(); }
-  // `stacked` (every cell's rows) at the held rows: itself where every cell is held, else
-  // gathered into `gathered`.
-  const Eigen::MatrixXd& at_held(const Eigen::MatrixXd& stacked, Eigen::MatrixXd& gathered) const;
   // The patch nodes the layer's corrections left to the real-space sum, by target row, as
   // segments of the corrections' folded nodes (which therefore live as long as the plans).
   PairShares take_folded_shares(Layer layer) const;

@@ -20,9 +20,8 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
                                        const Eigen::MatrixXd* single_layer_density, const DensityHalo& bring_density)
     : layers_(layers), points_(points) {
   if (single_layer_density) {
-    if (single_layer_density->rows() != static_cast<Eigen::Index>(layers.num_cells()) * layers.nodes_per_cell() ||
-        single_layer_density->cols() != 3)
-      throw std::invalid_argument("CellLayersAtPoints: the single-layer density must be (cell nodes x 3)");
+    if (single_layer_density->rows() != layers.nodes().size() || single_layer_density->cols() != 3)
+      throw std::invalid_argument("CellLayersAtPoints: the single-layer density must be (held cell nodes x 3)");
     single_density_ = single_layer_density;
   }
   const LayerDomain& domain = layers.domain();
@@ -71,7 +70,7 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
                                                           near.targets, node_shares[0]);
     }
     if (single_density_) {
-      near_single[c] = near_[c].single->apply(single_density_->middleRows(c * np, np));
+      near_single[c] = near_[c].single->apply(single_density_->middleRows(layers.held_row(c), np));
       near_[c].single.reset();
     }
   }
@@ -87,9 +86,9 @@ CellLayersAtPoints::CellLayersAtPoints(const CellLayers& layers, const Eigen::Ma
 Eigen::MatrixXd CellLayersAtPoints::regular_single_layer(const Eigen::MatrixXd& f) const {
   if (layers_.domain().box) {
     if (!single_plan_) return Eigen::MatrixXd::Zero(points_.rows(), 3);  // no cell owned here
-    return single_plan_->single_layer(layers_.held_rows(f).array().colwise() * layers_.nodes().weight.array());
+    return single_plan_->single_layer(f.array().colwise() * layers_.nodes().weight.array());
   }
-  return regular_layer_sum(owned_sources(), owned_rows(f), LayerKernel{Layer::single, 0.0}, points_);
+  return regular_layer_sum(owned_sources(), owned_nodes(f), LayerKernel{Layer::single, 0.0}, points_);
 }
 
 SourceNodes CellLayersAtPoints::owned_sources() const {
@@ -114,7 +113,8 @@ Eigen::MatrixXd CellLayersAtPoints::corrections(Layer layer, const Eigen::Matrix
 #pragma omp parallel for schedule(dynamic)  // one cell per thread at a time, as in CellLayers
   for (int c = owned.begin; c < owned.end; ++c) {
     const Near& n = near_[c];
-    if (!n.rows.empty()) near[c] = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(c * np, np));
+    if (!n.rows.empty())
+      near[c] = (layer == Layer::single ? n.single : n.double_)->apply(density.middleRows(layers_.held_row(c), np));
   }
   for (int c = owned.begin; c < owned.end; ++c)
     for (std::size_t k = 0; k < near_[c].rows.size(); ++k) out.row(near_[c].rows[k]) += near[c].row(k);
@@ -134,7 +134,7 @@ Eigen::MatrixXd CellLayersAtPoints::double_layer(const Eigen::MatrixXd& u) const
 }
 
 Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) const {
-  if (f.rows() != every_node_rows() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
+  if (f.rows() != layers_.nodes().size() || f.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::single_layer: bad density size");
   if (single_part_) {
     if (&f != single_density_)
       throw std::logic_error("CellLayersAtPoints::single_layer: built for one single-layer density, given another");
@@ -145,20 +145,20 @@ Eigen::MatrixXd CellLayersAtPoints::single_layer_part(const Eigen::MatrixXd& f) 
 
 Eigen::MatrixXd CellLayersAtPoints::double_layer_part(const Eigen::MatrixXd& u) const {
   const SourceNodes& nodes = layers_.nodes();
-  if (u.rows() != every_node_rows() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
+  if (u.rows() != nodes.size() || u.cols() != 3) throw std::invalid_argument("CellLayersAtPoints::double_layer: bad density size");
   if (!layers_.has_double_layer()) throw std::logic_error("CellLayersAtPoints::double_layer: built without the double layer");
   Eigen::MatrixXd v;
   if (layers_.domain().box) {
     v = Eigen::MatrixXd::Zero(points_.rows(), 3);
     if (double_plan_) {
-      const PointField q = layers_.held_rows(u).array().colwise() * nodes.weight.array();
+      const PointField q = u.array().colwise() * nodes.weight.array();
       v = double_plan_->double_layer(q, nodes.normal);
       const PointField owned_q = owned_nodes(q), owned_normals = owned_nodes(nodes.normal);
       v.rowwise() += double_layer_linear_part(*layers_.domain().box, owned_nodes(nodes.x), owned_q, owned_normals,
                                               layers_.nodes_per_cell());
     }
   } else {
-    v = regular_layer_sum(owned_sources(), owned_rows(u), LayerKernel{Layer::double_, 0.0}, points_);
+    v = regular_layer_sum(owned_sources(), owned_nodes(u), LayerKernel{Layer::double_, 0.0}, points_);
   }
   v += corrections(Layer::double_, u);
   return v;

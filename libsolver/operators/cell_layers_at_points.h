@@ -24,8 +24,9 @@ std::shared_ptr<const SpmeGrid> cell_layers_at_points_grid(const LayerDomain& do
 class CellLayersAtPoints {
  public:
   // single_layer_density: as in CellLayers, the one single-layer density of the step (its
-  // traction), whose single layer is computed here with its corrections and plan freed after use;
-  // single_layer then takes that matrix only (the same object, read only here).
+  // traction, in the layers' held layout), whose single layer is computed here with its
+  // corrections and plan freed after use; single_layer then takes that matrix only (the same
+  // object, read only here).
   // `bring_density` is called with the layers' halo_with(slabs()) before it is read.
   CellLayersAtPoints(const CellLayers& layers, const Eigen::MatrixXd& points,
                      const Eigen::MatrixXd* single_layer_density = nullptr, const DensityHalo& bring_density = {});
@@ -36,7 +37,8 @@ class CellLayersAtPoints {
   // "<prefix> near corrections: ...", "<prefix> Ewald single/double: ..." (memory_report.h).
   void report_memory(MemoryReport& report, const std::string& prefix) const;
 
-  // Densities stacked over the cells as in CellLayers; the results have one row per point.
+  // Densities at the layers' held rows (CellLayers::nodes()'s: every cell's on one rank; the
+  // rows of the cells not read may hold anything); the results have one row per point.
   // single_layer throws std::logic_error for another matrix than the constructor's, if given.
   Eigen::MatrixXd single_layer(const Eigen::MatrixXd& f) const;
   Eigen::MatrixXd double_layer(const Eigen::MatrixXd& u) const;
@@ -56,19 +58,10 @@ class CellLayersAtPoints {
   Eigen::MatrixXd corrections(Layer layer, const Eigen::MatrixXd& density) const;
   Eigen::MatrixXd regular_single_layer(const Eigen::MatrixXd& f) const;  // this rank's part
   SourceNodes owned_sources() const;  // the nodes of the cells this rank owns
-  // The owned cells' rows of every cell's stacked rows (a density) ...
-  template <class Matrix>
-  auto owned_rows(const Matrix& stacked) const {
-    return stacked.middleRows(layers_.owned().begin * layers_.nodes_per_cell(),
-                              layers_.owned().size() * layers_.nodes_per_cell());
-  }
-  // ... and of the held cells' (the layers' nodes, CellLayers::nodes).
+  // The owned cells' rows of held node data (the layers' nodes, CellLayers::nodes).
   template <class Matrix>
   auto owned_nodes(const Matrix& held) const {
     return held.middleRows(layers_.owned_nodes().begin, layers_.owned().size() * layers_.nodes_per_cell());
-  }
-  Eigen::Index every_node_rows() const {
-    return static_cast<Eigen::Index>(layers_.num_cells()) * layers_.nodes_per_cell();
   }
 
   const CellLayers& layers_;

@@ -200,6 +200,7 @@ FlowSolution CellStepper::solve() const {
   std::optional<HaloDensity> step_traction;
   std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
   std::vector<int> step_halo;           // the cells this rank reads or adds to besides its own (positions in owner order)
+  std::vector<int> held_cells;          // the owned and step_halo, ascending (several ranks; one: every cell)
   std::vector<CellSphere> owner_spheres;  // the cells' spheres in owner order (several ranks)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
@@ -258,8 +259,14 @@ FlowSolution CellStepper::solve() const {
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
     // The layers hold the nodes of the step's halo besides their own, not every cell's.
-    if (options_.domain.ranks.size() > 1) domain.held = HeldCells{step_halo, std::move(owner_spheres)};
-    step_traction.emplace(std::move(owned), owners, np, options_.domain.ranks);
+    if (options_.domain.ranks.size() > 1) {
+      domain.held = HeldCells{step_halo, std::move(owner_spheres)};
+      for (int k = first; k < end; ++k) held_cells.push_back(k);
+      held_cells.insert(held_cells.end(), step_halo.begin(), step_halo.end());
+      std::sort(held_cells.begin(), held_cells.end());
+    }
+    // The densities at the layers' held rows (cell_layers.h): no matrix of every cell's rows.
+    step_traction.emplace(std::move(owned), owners, np, options_.domain.ranks, held_cells);
     traction = &step_traction->density();
     bring_traction = step_traction->bringer();
     // The traction is the step's only single-layer density: its single layer is computed as
@@ -288,7 +295,9 @@ FlowSolution CellStepper::solve() const {
     if (at_wall) {
       ScopedTimer timer(timing.at_wall_products);
       v -= at_wall->single_layer_part(*traction) / (8 * kPi);
-      if (lambda != 1.0 && U.rows() == nc * np) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer_part(U);
+      Eigen::MatrixXd gathered;
+      if (lambda != 1.0 && U.rows() == nc * np)
+        v += (1 - lambda) / (8 * kPi) * at_wall->double_layer_part(layers->at_held(U, gathered));
     }
     WallSolution w;
     ScopedTimer solve_timer(timing.wall_solve);
@@ -323,9 +332,10 @@ FlowSolution CellStepper::solve() const {
   // `image`: the left-hand side of (10) at `guess` when known (in: saves a product), and at the
   // solution (out); see solve_cell_velocity.
   auto solve_cells = [&](const Eigen::MatrixXd& guess, Eigen::MatrixXd* image) {
-    Eigen::MatrixXd background(nc * np, 3);
+    Eigen::MatrixXd background;
     std::optional<Eigen::MatrixXd> wall_velocity_part;
     if (options_.domain.box) {
+      background.resize(static_cast<Eigen::Index>(layers->owned().size()) * np, 3);  // this rank's rows
       background.rowwise() = s.mean_velocity.transpose();
       if (wall_) {
         // Each rank evaluates the wall's near field and real-space sum at its own cells' nodes
@@ -338,12 +348,13 @@ FlowSolution CellStepper::solve() const {
                                                    options_.domain.ranks, static_cast<long>(nc) * np));
         }
         ScopedTimer timer(timing.wall_at_cells);
-        wall_velocity_part = layers->every_rows(WallCoupling::velocity_at(*wall_at_cells, s.wall_force));
+        wall_velocity_part = WallCoupling::velocity_at(*wall_at_cells, s.wall_force);  // at the held rows
       }
     } else {
       // Free space: every cell is held (a rank's part reaches every node).
       const SourceNodes& nodes = layers->nodes();
       if (!layers->holds_all()) throw std::logic_error("CellStepper: free-space layers that do not hold every cell");
+      background.resize(static_cast<Eigen::Index>(nc) * np, 3);
       for (int r = 0; r < nc * np; ++r) background.row(r) = options_.background(Eigen::Vector3d(nodes.x.row(r)));
     }
     if (!work_arrays_->keeping()) release_heap_memory();  // what the builds freed
@@ -464,7 +475,7 @@ FlowSolution CellStepper::solve() const {
   // U^n held by its owners in the products: the flux sections' double layer brings its halo's
   // rows; each rank keeps its own cells' (the velocities' history), not every cell's.
   std::optional<HaloDensity> velocity;
-  if (nc > 0) velocity.emplace(std::move(s.velocity), owners, np, options_.domain.ranks);
+  if (nc > 0) velocity.emplace(std::move(s.velocity), owners, np, options_.domain.ranks, held_cells);
   if (section_meter_) {
     std::vector<SHSurface> own;  // the layers' owned cells: owners' block of this rank
     const int rank = options_.domain.ranks.rank();
@@ -507,9 +518,9 @@ FlowSolution CellStepper::solve() const {
   if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
-  // The cells' state held on this rank (docs/scaling.md): every cell's shapes, traction on the
-  // N grid (filled at its owned and halo cells) and this step's velocity, the membrane states of
-  // its cells in the products and its own cells' last three velocities (every cell's on one rank).
+  // The cells' state held on this rank (docs/scaling.md): every cell's shapes, its owned cells'
+  // traction on the N grid and this step's velocity, the membrane states of its cells in the
+  // products and its own cells' last three velocities (every cell's on one rank).
   std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
@@ -536,12 +547,14 @@ void CellStepper::share_for_output(FlowSolution& s) const {
   // Every rank's own cells' rows, unless shared already (a rank whose block is every
   // cell cannot tell by itself).
   const bool shared = ranks.min(s.velocity.rows() == static_cast<Eigen::Index>(nc) * np ? 1 : 0) == 1;
-  if (!shared) s.velocity = owners.to_cell_order(OwnedRows(owners.first, np, ranks).gather(owned_velocity(s)), np);
-  const Eigen::MatrixXd by_owners = owners.to_owner_order(s.traction, np);
-  s.traction = owners.to_cell_order(
-      OwnedRows(owners.first, np, ranks).gather(by_owners.middleRows(static_cast<Eigen::Index>(first) * np,
-                                                                     static_cast<Eigen::Index>(end - first) * np)),
-      np);
+  if (!shared) {
+    const OwnedRows by_owners(owners.first, np, ranks);
+    s.velocity = owners.to_cell_order(by_owners.gather(owned_velocity(s)), np);
+    // solve() leaves the owned cells' rows of the traction, as of the velocity.
+    if (s.traction.rows() != static_cast<Eigen::Index>(end - first) * np)
+      throw std::invalid_argument("share_for_output: not this stepper's solution");
+    s.traction = owners.to_cell_order(by_owners.gather(s.traction), np);
+  }
 }
 
 double CellStepper::enforce_volume(int c) {

@@ -70,8 +70,8 @@ struct FlowSolution {
   // the GMRES of (10) ended with here); CellStepper::share_for_output every cell's.
   Eigen::MatrixXd velocity;
   // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
-  // the cells this rank's operators read (its own in the products and their halo) and zero
-  // elsewhere; CellStepper::share_for_output fills every row.
+  // this rank's own cells in the products, in owner order, as of the velocity;
+  // CellStepper::share_for_output every cell's.
   Eigen::MatrixXd traction;
   // Per cell. On several ranks solve() fills only the rank's own cells in the products (owners)
   // and leaves the others empty; CellStepper::share_for_output fills them all.

@@ -14,26 +14,32 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
   const double lam = viscosity_ratio, pi = std::numbers::pi;
   if (!(lam > 0)) throw std::invalid_argument("solve_cell_velocity: viscosity ratio must be positive");
   const Eigen::Index total = static_cast<Eigen::Index>(layers.num_cells()) * layers.nodes_per_cell();
-  if (background.rows() != total || background.cols() != 3 ||
-      (background_part && (background_part->rows() != total || background_part->cols() != 3)))
+  const Eigen::Index held = layers.nodes().size(), owned = static_cast<Eigen::Index>(layers.owned().size()) * layers.nodes_per_cell();
+  if ((background.rows() != total && background.rows() != owned) || background.cols() != 3 ||
+      (background_part && (background_part->rows() != held || background_part->cols() != 3)))
     throw std::invalid_argument("solve_cell_velocity: background is not one row a node");
+  if (traction.rows() != held || traction.cols() != 3)
+    throw std::invalid_argument("solve_cell_velocity: traction is not one row a held node");
   // GMRES's vectors are this rank's cells' rows (parallel/owned_rows.h): a product brings the
   // rows of the density this rank reads (its cells' and those its slab of the grid spreads)
   // from their owners into the rows the layers hold, and each rank receives only its rows of
   // the sum of the ranks' parts, from the ranks whose parts reach them. The parts' uniform term
   // is summed apart. The right-hand side arrives the same way: each rank's part of N f and of
   // the background.
+  // The products in the layers' held layout: no vector of every cell's rows on several ranks.
   const Communicator& ranks = layers.domain().ranks;
   OwnedRows rows(layers.owned_first(), layers.nodes_per_cell(), ranks);
+  if (ranks.size() > 1) rows.hold(layers.held_cells());
   const Eigen::Index n = rows.rows();
+  const Eigen::MatrixXd& u_b = background.rows() == n ? background : rows.mine(background);  // this rank's rows
   Eigen::MatrixXd b_mine;
   if (ranks.size() == 1) {
-    const Eigen::MatrixXd u_b = background_part ? Eigen::MatrixXd(background + *background_part) : background;
-    b_mine = -layers.single_layer(traction) / (4 * pi * (1 + lam)) + (2 / (1 + lam)) * u_b;
+    const Eigen::MatrixXd u_sum = background_part ? Eigen::MatrixXd(u_b + *background_part) : u_b;
+    b_mine = -layers.held_single_layer_part(traction) / (4 * pi * (1 + lam)) + (2 / (1 + lam)) * u_sum;
   } else {
-    Eigen::MatrixXd part = -layers.single_layer_part(traction) / (4 * pi * (1 + lam));
+    Eigen::MatrixXd part = -layers.held_single_layer_part(traction) / (4 * pi * (1 + lam));
     if (background_part) part += (2 / (1 + lam)) * *background_part;
-    b_mine = rows.sum_mine(part) + (2 / (1 + lam)) * rows.mine(background);
+    b_mine = rows.sum_mine_held(part) + (2 / (1 + lam)) * u_b;
   }
   VelocitySolve s;
   if (lam == 1.0) {
@@ -43,11 +49,7 @@ VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& tra
     if (image) *image = s.velocity;
     return s;
   }
-  if (ranks.size() > 1) {
-    // The products in the layers' held layout: no vector of every cell's rows in an iteration.
-    rows.hold(layers.held_cells());
-    rows.read_only(layers.density_rows());
-  }
+  if (ranks.size() > 1) rows.read_only(layers.density_rows());
   const double c = (1 - lam) / (4 * pi * (1 + lam));
   auto A = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
     const Eigen::Map<const Eigen::MatrixXd> u(v.data(), n, 3);

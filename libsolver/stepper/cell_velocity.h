@@ -19,15 +19,18 @@ struct VelocitySolve {
   long rows_received = 0;    // node rows this rank received from the others in the solve's products
 };
 
-// mu = 1 (lengths, times and viscosity in the paper's units). background: stacked nodes x 3,
-// the same on every rank. `initial_guess`: every node's rows or this rank's cells' (as the
-// returned velocity). `image` (optional): on entry, when it has the guess's shape, the
+// mu = 1 (lengths, times and viscosity in the paper's units). `traction`: at the layers' held
+// rows (CellLayers::nodes(); every cell's where every cell is held), the layers' own
+// single-layer density where they were built for one. background: every node's rows, the same
+// on every rank, or this rank's cells' (as the returned velocity). `initial_guess`: every node's
+// rows or this rank's cells'. `image` (optional): on entry, when it has the guess's shape, the
 // left-hand side of (6) for `initial_guess`, which saves the solve's first product; on return,
 // the left-hand side for the returned velocity, this rank's cells' rows
-// (preconditioned_gmres.h: no product). `background_part` (optional, stacked nodes x 3): this rank's part of a further
-// background that is the sum of the ranks' parts (the wall's velocity at the cells,
-// wall/wall_operator.h's TargetRows); on several ranks each receives only its rows of the
-// right-hand side, summed from the ranks' parts of it (parallel/owned_rows.h), never the whole.
+// (preconditioned_gmres.h: no product). `background_part` (optional, at the held rows): this
+// rank's part of a further background that is the sum of the ranks' parts (the wall's velocity
+// at the cells, wall/wall_operator.h's TargetRows), zero outside the held cells; on several
+// ranks each receives only its rows of the right-hand side, summed from the ranks' parts of it
+// (parallel/owned_rows.h), never the whole.
 VelocitySolve solve_cell_velocity(CellLayers& layers, const Eigen::MatrixXd& traction, double viscosity_ratio,
                                   const Eigen::MatrixXd& background, double tolerance, int max_iterations,
                                   const Eigen::MatrixXd& initial_guess = {}, Eigen::MatrixXd* image = nullptr,
