@@ -70,15 +70,21 @@ void share_shapes(std::vector<Cell>& cells, const CellOwners& owners, const Comm
 
 // The rows (nodes_per_cell a cell) of the cells `owners` gives rank `rank` in `held`, a matrix
 // whose rows are stacked in `held_by`'s order (zero where not read), in `owners`' order.
+// `held_positions` (ascending positions in held_by's order): `held` stacks only those cells'
+// rows (OwnedRows' held layout); empty: every cell's.
 Eigen::MatrixXd rows_of_owned(const Eigen::MatrixXd& held, const CellOwners& held_by, const CellOwners& owners,
-                              int rank, int np) {
+                              int rank, int np, const std::vector<int>& held_positions = {}) {
   std::vector<int> position(held_by.order.size());
   for (std::size_t k = 0; k < held_by.order.size(); ++k) position[static_cast<std::size_t>(held_by.order[k])] = static_cast<int>(k);
+  auto row = [&](int c) -> Eigen::Index {
+    const int p = position[static_cast<std::size_t>(c)];
+    if (held_positions.empty()) return static_cast<Eigen::Index>(p) * np;
+    return (std::lower_bound(held_positions.begin(), held_positions.end(), p) - held_positions.begin()) * np;
+  };
   const int first = owners.first[rank], end = owners.first[rank + 1];
   Eigen::MatrixXd rows(static_cast<Eigen::Index>(end - first) * np, 3);
   for (int k = first; k < end; ++k)
-    rows.middleRows(static_cast<Eigen::Index>(k - first) * np, np) =
-        held.middleRows(static_cast<Eigen::Index>(position[static_cast<std::size_t>(owners.order[k])]) * np, np);
+    rows.middleRows(static_cast<Eigen::Index>(k - first) * np, np) = held.middleRows(row(owners.order[k]), np);
   return rows;
 }
 
@@ -287,6 +293,7 @@ FlowSolution CellStepper::solve() const {
     s.near_wall_points = at_wall->near_points();
   }
   double sweep_tolerance = 0;  // > 0: the start sweeps' looser tolerance (below)
+  // U: at the layers' held rows (layers->nodes()), or empty (none yet).
   auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
     // The cells' velocity at the wall nodes, this rank's part of it (its cells as sources, its
     // slab of the grid): the wall solve sums the ranks' parts, each rank its segment of nodes.
@@ -295,9 +302,7 @@ FlowSolution CellStepper::solve() const {
     if (at_wall) {
       ScopedTimer timer(timing.at_wall_products);
       v -= at_wall->single_layer_part(*traction) / (8 * kPi);
-      Eigen::MatrixXd gathered;
-      if (lambda != 1.0 && U.rows() == nc * np)
-        v += (1 - lambda) / (8 * kPi) * at_wall->double_layer_part(layers->at_held(U, gathered));
+      if (lambda != 1.0 && U.size() > 0) v += (1 - lambda) / (8 * kPi) * at_wall->double_layer_part(U);
     }
     WallSolution w;
     ScopedTimer solve_timer(timing.wall_solve);
@@ -383,38 +388,63 @@ FlowSolution CellStepper::solve() const {
   };
 
   // The velocities' history is held by the last step's owners (history_owners_): each rank
-  // brings the rows its products read, in this step's owner order and zero elsewhere: its own
-  // cells' for the guess of (10) (from another rank only where a cell's owner changed) and, for
-  // the cells' double layer at the wall, those of the wall's halo too.
-  Eigen::MatrixXd velocity_guess, previous_velocity;
-  if (nc > 0 && velocities_held() > 0) {
+  // brings the rows its products read into the layers' held layout (zero at the other held
+  // rows): its own cells' for the guess of (10) (from another rank only where a cell's owner
+  // changed) and, for the cells' double layer at the wall, those of the wall's halo too. On one
+  // process the held layout is every cell's rows in owner order.
+  Eigen::MatrixXd velocity_guess, previous_velocity;  // this rank's own rows; the held rows
+  const bool with_history = nc > 0 && velocities_held() > 0;  // alike on every rank
+  if (with_history) {
     const CellOwners& held_by = history_owners_;
-    OwnedRows holders(held_by.first, np, options_.domain.ranks);
-    if (options_.domain.ranks.size() > 1) {
-      const int r = options_.domain.ranks.rank();
-      std::vector<int> read(owners.order.begin() + owners.first[r], owners.order.begin() + owners.first[r + 1]);
-      if (at_wall && lambda != 1.0)
-        for (int k : layers->halo_with(at_wall->slabs())) read.push_back(owners.order[k]);
-      std::vector<int> position(static_cast<std::size_t>(nc));  // in held_by's order
+    const Communicator& ranks = options_.domain.ranks;
+    if (ranks.size() == 1) {
+      auto in_owner_order = [&](const Eigen::MatrixXd& held) {
+        if (held_by.order == owners.order) return held;
+        return owners.to_owner_order(held_by.to_cell_order(held, np), np);
+      };
+      velocity_guess = in_owner_order(extrapolated_velocity());
+      previous_velocity = in_owner_order(state_.previous_velocity);
+    } else {
+      const int r = ranks.rank();
+      std::vector<int> position(static_cast<std::size_t>(nc));  // a cell's, in held_by's order
       for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(held_by.order[k])] = k;
+      auto in_held_by = [&](int k) { return position[static_cast<std::size_t>(owners.order[k])]; };
+      std::vector<int> read;  // positions in held_by's order
+      for (int k = owners.first[r]; k < owners.first[r + 1]; ++k) read.push_back(in_held_by(k));
+      if (at_wall && lambda != 1.0)
+        for (int k : layers->halo_with(at_wall->slabs())) read.push_back(in_held_by(k));
+      std::sort(read.begin(), read.end());
       std::vector<int> rows;
-      for (int c : read)
-        for (int i = 0; i < np; ++i) rows.push_back(position[static_cast<std::size_t>(c)] * np + i);
-      std::sort(rows.begin(), rows.end());
+      for (int p : read)
+        for (int i = 0; i < np; ++i) rows.push_back(p * np + i);
+      // Held here: the cells the last step's owners gave this rank (its own in that layout)
+      // and the layers' held cells, in held_by's order.
+      std::vector<int> hold;
+      for (int p = held_by.first[r]; p < held_by.first[r + 1]; ++p) hold.push_back(p);
+      for (int k : layers->held_cells()) hold.push_back(in_held_by(k));
+      std::sort(hold.begin(), hold.end());
+      hold.erase(std::unique(hold.begin(), hold.end()), hold.end());
+      OwnedRows holders(held_by.first, np, ranks);
+      holders.hold(hold);
       holders.read_only(rows);
+      // From holders' held layout to the layers' (the same cells, in owner order).
+      auto at_layers_rows = [&](const Eigen::MatrixXd& held) {
+        const Eigen::MatrixXd brought = holders.gather_read_held(held);
+        Eigen::MatrixXd out(layers->nodes().size(), 3);
+        for (int k : layers->held_cells()) {
+          const auto at = std::lower_bound(hold.begin(), hold.end(), in_held_by(k)) - hold.begin();
+          out.middleRows(layers->held_row(k), np) = brought.middleRows(static_cast<Eigen::Index>(at) * np, np);
+        }
+        return out;
+      };
+      velocity_guess = rows_of_owned(holders.gather_read_held(extrapolated_velocity()), held_by, owners, r, np, hold);
+      previous_velocity = at_layers_rows(state_.previous_velocity);
     }
-    auto in_owner_order = [&](const Eigen::MatrixXd& held) {
-      const Eigen::MatrixXd by_holders = holders.gather_read(held);
-      if (held_by.order == owners.order) return by_holders;
-      return owners.to_owner_order(held_by.to_cell_order(by_holders, np), np);
-    };
-    velocity_guess = in_owner_order(extrapolated_velocity());
-    previous_velocity = in_owner_order(state_.previous_velocity);
   }
   try {
-    const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && previous_velocity.rows() != nc * np;
+    const bool start_sweeps = wall_ && nc > 0 && lambda != 1.0 && !with_history;
     if (start_sweeps) sweep_tolerance = kStartSweepForcing;  // U = 0 in (12): an O(1) change to come
-    if (wall_) solve_wall(previous_velocity, force_guess);
+    if (wall_) solve_wall(previous_velocity, force_guess);  // empty without history
     Eigen::MatrixXd image;  // of the cell velocity under (10)'s left-hand side
     if (nc > 0) solve_cells(velocity_guess, start_sweeps ? &image : nullptr);
     // The first step has no U^{n-1} for the double layer in (12): sweep (12) and (10) until U
@@ -441,10 +471,11 @@ FlowSolution CellStepper::solve() const {
         for (int k : read)
           for (int i = 0; i < np; ++i) rows.push_back(k * np + i);
         std::sort(rows.begin(), rows.end());
+        by_owners.hold(layers->held_cells());
         by_owners.read_only(rows);
       }
-      auto at_wall_rows = [&](const Eigen::MatrixXd& mine) {
-        return ranks.size() == 1 ? mine : by_owners.gather_read(mine);
+      auto at_wall_rows = [&](const Eigen::MatrixXd& mine) {  // the layers' held rows
+        return ranks.size() == 1 ? mine : by_owners.gather_read_held(mine);
       };
       const SplitInnerProducts split{ranks};
       auto norm = [&](const Eigen::MatrixXd& mine) {
@@ -757,15 +788,24 @@ void CellStepper::migrate_history(const CellOwners& to) {
   const int np = points_per_cell();
   std::vector<int> position(static_cast<std::size_t>(nc));  // in history_owners_' order
   for (int k = 0; k < nc; ++k) position[static_cast<std::size_t>(history_owners_.order[k])] = k;
+  // Brought into the held layout of the rank's old and new cells, not a matrix of every row.
+  const int r = ranks.rank();
+  std::vector<int> read, hold;  // positions in history_owners_' order
+  for (int k = to.first[r]; k < to.first[r + 1]; ++k) read.push_back(position[static_cast<std::size_t>(to.order[k])]);
+  std::sort(read.begin(), read.end());
+  for (int p = history_owners_.first[r]; p < history_owners_.first[r + 1]; ++p) hold.push_back(p);
+  hold.insert(hold.end(), read.begin(), read.end());
+  std::sort(hold.begin(), hold.end());
+  hold.erase(std::unique(hold.begin(), hold.end()), hold.end());
   std::vector<int> rows;
-  for (int k = to.first[ranks.rank()]; k < to.first[ranks.rank() + 1]; ++k)
-    for (int i = 0; i < np; ++i) rows.push_back(position[static_cast<std::size_t>(to.order[k])] * np + i);
-  std::sort(rows.begin(), rows.end());
+  for (int p : read)
+    for (int i = 0; i < np; ++i) rows.push_back(p * np + i);
   OwnedRows holders(history_owners_.first, np, ranks);
+  holders.hold(hold);
   holders.read_only(rows);
   Eigen::MatrixXd* history[] = {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity};
   for (int h = 0; h < held; ++h)
-    *history[h] = rows_of_owned(holders.gather_read(*history[h]), history_owners_, to, ranks.rank(), np);
+    *history[h] = rows_of_owned(holders.gather_read_held(*history[h]), history_owners_, to, r, np, hold);
   history_owners_ = to;
 }
 
