@@ -21,6 +21,7 @@
 #include "libsolver/stepper/cell_flux.h"
 #include "libsolver/stepper/cell_free_layer.h"
 #include "libsolver/stepper/halo_density.h"
+#include "libsolver/stepper/held_shapes.h"
 #include "libsolver/stepper/step_slabs.h"
 
 namespace rbcflow {
@@ -57,15 +58,11 @@ void share_membranes(std::vector<MembraneState>& membranes, const CellOwners& ow
   share_blocks(ranks, items);
 }
 
-// Every cell's shape on every rank, from those of the ranks' own cells in `owners` (whose
-// blocks in owner order have owned_block's sizes, share_blocks' blocks).
-void share_shapes(std::vector<Cell>& cells, const CellOwners& owners, const Communicator& ranks) {
-  std::vector<std::vector<std::span<double>>> items;
-  for (const int c : owners.order) {
-    Eigen::MatrixXd& x = cells[static_cast<std::size_t>(c)].shape.coeffs().values();
-    items.push_back({std::span<double>(x.data(), static_cast<std::size_t>(x.size()))});
-  }
-  share_blocks(ranks, items);
+// Pointers to the cells' shapes, by cell number (held_shapes.h).
+std::vector<SHCoeffs*> shapes_of(std::vector<Cell>& cells) {
+  std::vector<SHCoeffs*> x;
+  for (Cell& c : cells) x.push_back(&c.shape.coeffs());
+  return x;
 }
 
 // The rows (nodes_per_cell a cell) of the cells `owners` gives rank `rank` in `held`, a matrix
@@ -207,6 +204,7 @@ FlowSolution CellStepper::solve() const {
   std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
   std::vector<int> step_halo;           // the cells this rank reads or adds to besides its own (positions in owner order)
   std::vector<int> held_cells;          // the owned and step_halo, ascending (several ranks; one: every cell)
+  std::vector<SHCoeffs> shapes;         // in owner order: the held cells' (several ranks; one: every cell)
   std::vector<CellSphere> owner_spheres;  // the cells' spheres in owner order (several ranks)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
@@ -241,15 +239,32 @@ FlowSolution CellStepper::solve() const {
       step_halo = cell_layers_halo(owner_spheres, *grids_, owned_domain, options_.quadrature, lambda != 1.0,
                                    grid_cache_.get(), other_slabs);
     }
-    std::vector<SHCoeffs> shapes(nc);
-    for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
+    // The shapes in owner order: each rank holds its own in history_owners_ (held_shapes.h) and
+    // brings those of the cells it holds besides in the products (its own and the step's halo).
+    const int r = options_.domain.ranks.rank();
+    const int first = owners.first[r], end = owners.first[r + 1];
+    shapes.resize(nc);
+    if (options_.domain.ranks.size() > 1) {
+      for (int k = first; k < end; ++k) held_cells.push_back(k);
+      held_cells.insert(held_cells.end(), step_halo.begin(), step_halo.end());
+      std::sort(held_cells.begin(), held_cells.end());
+      std::vector<SHCoeffs*> by_cell(nc);
+      std::vector<int> bring;
+      for (int k = 0; k < nc; ++k) {
+        const SHCoeffs& x = cells_[owners.order[k]].shape.coeffs();
+        shapes[k] = shape_held(x) ? x : shape_not_held(x.order());
+        by_cell[owners.order[k]] = &shapes[k];
+      }
+      for (int k : held_cells) bring.push_back(owners.order[k]);
+      s.shapes_received = bring_shapes(by_cell, history_owners_, bring, options_.domain.ranks);
+    } else {
+      for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
+    }
     s.membrane.resize(nc);
     ScopedTimer membrane_timer(timing.membrane);
     // Each rank the membranes of the cells it owns in the products; the operators bring the
     // rows of the others' tractions they read (halo_density.h), the output the rest of their
     // states (share_for_output).
-    const int r = options_.domain.ranks.rank();
-    const int first = owners.first[r], end = owners.first[r + 1];
     Eigen::MatrixXd owned(static_cast<Eigen::Index>(end - first) * np, 3);
 #pragma omp parallel for schedule(dynamic)
     for (int k = first; k < end; ++k) {
@@ -258,19 +273,14 @@ FlowSolution CellStepper::solve() const {
       auto rows = owned.middleRows(static_cast<Eigen::Index>(k - first) * np, np);
       rows = s.membrane[c].traction_grid;
       if (cells_[c].body_force.isZero()) continue;
-      const double area = surface_area(cells_[c].shape.geometry(*grids_->n_grid));
+      const double area = surface_area(SHSurface(shapes[k]).geometry(*grids_->n_grid));
       rows.rowwise() -= (cells_[c].body_force / area).transpose();
     }
     membrane_timer.stop();
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
     // The layers hold the nodes of the step's halo besides their own, not every cell's.
-    if (options_.domain.ranks.size() > 1) {
-      domain.held = HeldCells{step_halo, std::move(owner_spheres)};
-      for (int k = first; k < end; ++k) held_cells.push_back(k);
-      held_cells.insert(held_cells.end(), step_halo.begin(), step_halo.end());
-      std::sort(held_cells.begin(), held_cells.end());
-    }
+    if (options_.domain.ranks.size() > 1) domain.held = HeldCells{step_halo, std::move(owner_spheres)};
     // The densities at the layers' held rows (cell_layers.h): no matrix of every cell's rows.
     step_traction.emplace(std::move(owned), owners, np, options_.domain.ranks, held_cells);
     traction = &step_traction->density();
@@ -510,7 +520,7 @@ FlowSolution CellStepper::solve() const {
   if (section_meter_) {
     std::vector<SHSurface> own;  // the layers' owned cells: owners' block of this rank
     const int rank = options_.domain.ranks.rank();
-    for (int k = owners.first[rank]; k < owners.first[rank + 1]; ++k) own.push_back(cells_[owners.order[k]].shape);
+    for (int k = owners.first[rank]; k < owners.first[rank + 1]; ++k) own.push_back(SHSurface(shapes[k]));
     DensityHalo bring_densities = [&](const std::vector<int>& halo) {
       bring_traction(halo);
       if (lambda != 1.0) velocity->bring(halo);  // the double layer's density
@@ -549,17 +559,18 @@ FlowSolution CellStepper::solve() const {
   if (wall_at_cells) wall_at_cells->report_memory(s.memory, "wall at cells");
   if (wall_) wall_->report_memory(s.memory);
   s.memory.add("cell SPME grids", grid_cache_->memory_bytes());
-  // The cells' state held on this rank (docs/scaling.md): every cell's shapes, its owned cells'
-  // traction on the N grid and this step's velocity, the membrane states of its cells in the
-  // products and its own cells' last three velocities (every cell's on one rank).
-  std::size_t every_cell = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
+  // The cells' state held on this rank between steps (docs/scaling.md): the shapes of the cells
+  // it moved last, its owned cells' traction on the N grid and this step's velocity, the
+  // membrane states of its cells in the products and its own cells' last three velocities
+  // (every cell's on one rank).
+  std::size_t cells_held = matrix_bytes(s.traction) + matrix_bytes(s.velocity) +
                            matrix_bytes(state_.previous_velocity) + matrix_bytes(state_.older_velocity) +
                            matrix_bytes(state_.oldest_velocity);
-  for (const Cell& c : cells_) every_cell += matrix_bytes(c.shape.coeffs().values());
+  for (const Cell& c : cells_) cells_held += matrix_bytes(c.shape.coeffs().values());
   for (const MembraneState& m : s.membrane)
-    every_cell += matrix_bytes(m.traction.values()) + matrix_bytes(m.traction_grid) + matrix_bytes(m.dilatation) +
+    cells_held += matrix_bytes(m.traction.values()) + matrix_bytes(m.traction_grid) + matrix_bytes(m.dilatation) +
                   matrix_bytes(m.principal_tension);
-  s.memory.add("every cell's shape, membrane, velocity (all ranks)", every_cell);
+  s.memory.add("the cells' shapes, membranes, velocities held", cells_held);
   std::set<const RestMetrics*> rest_metrics;  // shared by the cells placed as copies of one shape
   for (const Cell& c : cells_)
     if (rest_metrics.insert(c.membrane->rest_metrics().get()).second)
@@ -567,11 +578,12 @@ FlowSolution CellStepper::solve() const {
   return s;
 }
 
-void CellStepper::share_for_output(FlowSolution& s) const {
+void CellStepper::share_for_output(FlowSolution& s) {
   const int nc = static_cast<int>(cells_.size());
   if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_for_output: not this stepper's solution");
   const Communicator& ranks = options_.domain.ranks;
   if (ranks.size() == 1 || nc == 0) return;
+  share_shapes(shapes_of(cells_), history_owners_, ranks);  // until advance() moves the cells
   const CellOwners& owners = s.owners;
   share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
   const int np = points_per_cell(), first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
@@ -682,7 +694,6 @@ void CellStepper::move_cells(const FlowSolution& s, StepReport& report) {
   report.max_volume_error = largest(report.max_volume_error, ranks);
   if (options_.volume_constraint) report.max_volume_correction = largest(volume_correction, ranks);
   report.max_area_error = largest(report.max_area_error, ranks);
-  share_shapes(cells_, owners, ranks);
 }
 
 std::vector<Eigen::Vector3d> CellStepper::volume_centroids() const {
@@ -692,7 +703,14 @@ std::vector<Eigen::Vector3d> CellStepper::volume_centroids() const {
 
 std::vector<CellMeasures> CellStepper::cell_measures(const FlowSolution& s) const {
   if (cells_.empty()) return {};
-  return rbcflow::cell_measures(cells_, *grids_->n_grid, owned_velocity(s), s.owners, options_.domain.ranks);
+  const Communicator& ranks = options_.domain.ranks;
+  if (ranks.size() == 1) return rbcflow::cell_measures(cells_, *grids_->n_grid, owned_velocity(s), s.owners, ranks);
+  // The shapes of this rank's cells in s.owners, brought where held by another (held_shapes.h).
+  std::vector<Cell> cells = cells_;
+  std::vector<int> own(s.owners.order.begin() + s.owners.first[ranks.rank()],
+                       s.owners.order.begin() + s.owners.first[ranks.rank() + 1]);
+  bring_shapes(shapes_of(cells), history_owners_, own, ranks);
+  return rbcflow::cell_measures(cells, *grids_->n_grid, owned_velocity(s), s.owners, ranks);
 }
 
 double CellStepper::discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& own) const {
@@ -717,6 +735,7 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.max_area_strain = largest(report.max_area_strain, options_.domain.ranks);
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
+  if (!cells_.empty()) migrate_shapes(s.owners);  // the shapes of this rank's cells in s.owners, no others
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
     // The gap, hematocrit and cell-free layer of each rank's own cells in the step's products
     // (it holds their velocities), reduced over the ranks.
@@ -751,6 +770,18 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   state_.time += options_.dt;
   ++state_.steps;
   return report;
+}
+
+void CellStepper::migrate_shapes(const CellOwners& to) {
+  const Communicator& ranks = options_.domain.ranks;
+  if (ranks.size() == 1) return;
+  const int r = ranks.rank();
+  std::vector<int> own(to.order.begin() + to.first[r], to.order.begin() + to.first[r + 1]);
+  bring_shapes(shapes_of(cells_), history_owners_, own, ranks);
+  std::vector<char> mine(cells_.size(), 0);
+  for (int c : own) mine[static_cast<std::size_t>(c)] = 1;
+  for (std::size_t c = 0; c < cells_.size(); ++c)
+    if (!mine[c]) release_shape(cells_[c].shape.coeffs());
 }
 
 int CellStepper::velocities_held() const {
@@ -821,6 +852,9 @@ StepperState CellStepper::state() const {
   StepperState s = state_;
   for (const Cell& c : cells_) s.shapes.push_back(c.shape.coeffs());
   if (cells_.empty()) return s;
+  std::vector<SHCoeffs*> shapes;
+  for (SHCoeffs& x : s.shapes) shapes.push_back(&x);
+  share_shapes(shapes, history_owners_, options_.domain.ranks);
   const OwnedRows holders(history_owners_.first, points_per_cell(), options_.domain.ranks);
   for (Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity})
     if (u->cols() == 3) *u = history_owners_.to_cell_order(holders.gather(*u), points_per_cell());

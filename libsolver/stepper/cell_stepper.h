@@ -89,6 +89,7 @@ struct FlowSolution {
   long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
   long traction_rows_received = 0;  // node rows of the traction the step's operators brought it (halo_density.h)
   long velocity_rows_received = 0;  // node rows of U^n brought it: the flux sections' halo, its block of the cells
+  int shapes_received = 0;  // cells' shapes brought this rank for the step's products (held_shapes.h)
   int owned_cells = 0, halo_cells = 0;  // this rank's cells in the step's products and their halo in all of them (CellLayers::halo_with)
   long wall_nodes_received = 0;  // wall nodes (12)'s solves brought this rank from the others (WallSolution's)
   StepTimings timings;        // where solve() spent its time
@@ -154,10 +155,10 @@ class CellStepper {
   StepReport advance(const FlowSolution& s);
   StepReport step() { return advance(solve()); }
   // Every cell's membrane state, traction and velocity in `s` (this stepper's solve()) on every
-  // rank, for output: solve() computes each rank's own cells' and brings each rank only the
-  // tractions and velocities it reads. Collective: every rank calls it; on one rank
-  // it changes nothing.
-  void share_for_output(FlowSolution& s) const;
+  // rank, for output, and every cell's shape in cells() until advance(): solve() computes each
+  // rank's own cells' and brings each rank only the shapes, tractions and velocities it reads.
+  // Collective: every rank calls it; on one rank it changes nothing.
+  void share_for_output(FlowSolution& s);
 
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }
@@ -165,6 +166,9 @@ class CellStepper {
   // The <u> that drives a periodic flow at the start (where a tube velocity is held, the
   // cell-free one: each step's own is in its FlowSolution).
   const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
+  // Every cell; on several ranks only the shapes of this rank's own cells (those it moved last)
+  // are held between steps (held_shapes.h: the others keep their order and no coefficients),
+  // every shape after share_for_output until advance(), and after restore() until the first.
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
@@ -181,7 +185,7 @@ class CellStepper {
   // without cells. Collective.
   std::vector<CellMeasures> cell_measures(const FlowSolution& s) const;
 
-  // The whole state, every cell's velocities gathered from the ranks: collective.
+  // The whole state, every cell's shape and velocities gathered from the ranks: collective.
   StepperState state() const;
   // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
   void restore(const StepperState& s);
@@ -213,6 +217,9 @@ class CellStepper {
   // from those of history_owners_: only the rows of cells whose owner changed travel.
   // Collective.
   void migrate_history(const CellOwners& to);
+  // The shapes of this rank's cells in `to` brought from the ranks of history_owners_, every
+  // other shape released (held_shapes.h). Collective.
+  void migrate_shapes(const CellOwners& to);
   // StepReport::discharge_hematocrit for the velocity of `s` (needs its tube velocity) on the
   // current shapes `own` of this rank's cells in s.owners, in owner order. Collective.
   double discharge_hematocrit(const FlowSolution& s, const std::vector<SHSurface>& own) const;

@@ -14,6 +14,7 @@
 #include "libsolver/parallel/ownership.h"
 #include "libsolver/wall/centroid_bins.h"
 #include "libsolver/parallel/share_blocks.h"
+#include "libsolver/stepper/held_shapes.h"
 
 namespace rbcflow {
 namespace {
@@ -370,7 +371,13 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     }
     share_blocks(ranks, spheres);
     const Neighbourhood near = find_neighbours(views, period, threshold);
-    report.shapes_brought += bring_items(ranks, owner, others_near(near, mine), shapes);
+    const std::vector<int> others = others_near(near, mine);
+    for (const int i : others) {  // a shape not held here (held_shapes.h) is allocated to be filled
+      if (shape_held(cells[i].coeffs())) continue;
+      allocate_shape(cells[i].coeffs());
+      shapes[i] = {std::span<double>(cells[i].coeffs().values().data(), cells[i].coeffs().values().size())};
+    }
+    report.shapes_brought += bring_items(ranks, owner, others, shapes);
     const Pass pass = detect(cells, views, near, grid_transform, wall, threshold, mine, owner, ranks);
     if (pass_index == 0) {
       report.cell_pairs = pass.cell_pairs;

@@ -1209,9 +1209,17 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
     EXPECT_EQ(measured[c].taylor_deformation, measured_alone[c].taylor_deformation) << "cell " << c;
   }
   const StepReport a = one.advance(s), b = shared.advance(on_the_ranks);
+  // Each rank holds the shapes of the cells it moved, no other (held_shapes.h); state() gathers
+  // every cell's.
+  const OwnedRange moved = owned_block(3, world);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(shared.cells()[c].shape.coeffs().values().size() > 0, moved.contains(c)) << "cell " << c;
+    EXPECT_EQ(shared.cells()[c].shape.order(), one.cells()[c].shape.order());
+  }
+  const StepperState shared_state = shared.state();
   double largest = 0.0;
   for (int c = 0; c < 3; ++c) {
-    const Eigen::MatrixXd& x = shared.cells()[c].shape.coeffs().values();
+    const Eigen::MatrixXd& x = shared_state.shapes[c].values();
     largest = std::max(largest, (x - one.cells()[c].shape.coeffs().values()).cwiseAbs().maxCoeff());
     EXPECT_EQ(spread_over_ranks(world, x), 0.0);
   }
@@ -1341,7 +1349,8 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
   GTEST_SKIP() << "too slow under AddressSanitizer; run in the Release pass";
 #endif
   const auto grids = CellGrids::make(8, 16);
-  const CellStepper one = sixteen_strained_cells_in_a_tube(grids, {}), shared = sixteen_strained_cells_in_a_tube(grids, world);
+  const CellStepper one = sixteen_strained_cells_in_a_tube(grids, {});
+  CellStepper shared = sixteen_strained_cells_in_a_tube(grids, world);
   FlowSolution a = one.solve(), b = shared.solve();
   const int nc = 16, np = static_cast<int>(a.traction.rows()) / nc;
   ASSERT_GT(a.traction.cwiseAbs().maxCoeff(), 0.1);  // strained membranes
@@ -1459,16 +1468,26 @@ TEST(DistributedStepper, VelocitiesHistoryFollowsItsOwners) {
       ASSERT_FALSE(b.owners.in_cell_order()) << "the owners are the index blocks: nothing to migrate";
     }
     ASSERT_GT(a.membrane[0].traction.values().cwiseAbs().maxCoeff(), 0.1);  // strained membranes
+    // The step's products held the shapes of the rank's cells and its halo: those the last
+    // step's owners gave another rank were brought, no more.
+    EXPECT_LE(b.shapes_received, b.owned_cells + b.halo_cells);
     one.advance(a);
     shared.advance(b);
+    // The shapes follow their owners: each rank holds those of the cells it moved, no other.
+    const int r = world.rank();
+    for (int k = 0; k < 3; ++k) {
+      const bool own = world.size() == 1 || (k >= b.owners.first[r] && k < b.owners.first[r + 1]);
+      EXPECT_EQ(shared.cells()[b.owners.order[k]].shape.coeffs().values().size() > 0, own) << "cell " << b.owners.order[k];
+    }
+    std::printf("  rank %d, step %d: %d shapes brought for the products\n", r, step, b.shapes_received);
   }
   double largest = 0.0, scale = 0.0;
+  const StepperState sa = one.state(), sb = shared.state();
   for (int c = 0; c < 3; ++c) {
     const Eigen::MatrixXd& x = one.cells()[c].shape.coeffs().values();
-    largest = std::max(largest, (shared.cells()[c].shape.coeffs().values() - x).cwiseAbs().maxCoeff());
+    largest = std::max(largest, (sb.shapes[c].values() - x).cwiseAbs().maxCoeff());
     scale = std::max(scale, x.cwiseAbs().maxCoeff());
   }
-  const StepperState sa = one.state(), sb = shared.state();
   const double du = relative(sb.previous_velocity, sa.previous_velocity),
                dw = relative(sb.oldest_velocity, sa.oldest_velocity);
   std::printf("  rank %d: after 2 steps from the restored state, shapes %.1e from one process's, U^{n-1} %.1e, U^{n-3} "
