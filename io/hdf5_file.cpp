@@ -51,20 +51,26 @@ template <typename T>
 void write_rows(hid_t loc, const std::string& name, const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& m,
                 hid_t file_type, hid_t memory_type, bool one_column_as_vector, RowBlock block) {
   const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
-  std::vector<hsize_t> dims{static_cast<hsize_t>(m.rows())};
+  const bool part = block.total >= 0;  // m holds rows [begin, end) of the dataset only
+  if (part && (block.begin < 0 || block.end - block.begin != m.rows() || block.end > block.total))
+    fail("the rows " + std::to_string(block.begin) + ".." + std::to_string(block.end) + " of " +
+         std::to_string(block.total) + " do not fit a part of " + std::to_string(m.rows()) + " rows of " + name);
+  const long long n = part ? block.total : m.rows();
+  std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
   if (!(one_column_as_vector && m.cols() == 1)) dims.push_back(static_cast<hsize_t>(m.cols()));
   const Id space = dataspace(dims);
   const Id set(checked(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                      "cannot create dataset " + name),
                H5Dclose);
-  if (m.size() == 0) return;
+  if (n == 0 || m.cols() == 0) return;
   if (!shared_file(loc)) {
+    if (part && m.rows() != n) fail("a part of the rows of " + name + " in a file of one process");
     check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), "cannot write " + name);
     return;
   }
-  const long long n = m.rows();
-  const long long begin = std::clamp(block.begin, 0LL, n);
-  const long long end = block.end < 0 ? n : std::clamp(block.end, begin, n);
+  const long long begin = part ? block.begin : std::clamp(block.begin, 0LL, n);
+  const long long end = part ? block.end : block.end < 0 ? n : std::clamp(block.end, begin, n);
+  const long long offset = part ? 0 : begin;  // of the rank's first row in m
   std::vector<hsize_t> start(dims.size(), 0), count = dims;
   start[0] = static_cast<hsize_t>(begin);
   count[0] = static_cast<hsize_t>(end - begin);
@@ -80,8 +86,9 @@ void write_rows(hid_t loc, const std::string& name, const Eigen::Matrix<T, Eigen
     H5Sselect_none(memory_space.get());
   }
   const Id transfer = collective_transfer();
+  const T none{};  // a buffer for a rank that writes no row
   check(H5Dwrite(set.get(), memory_type, memory_space.get(), file_space.get(), transfer.get(),
-                 rows.data() + begin * m.cols()),
+                 rows.size() > 0 ? rows.data() + offset * m.cols() : &none),
         "cannot write " + name);
 }
 

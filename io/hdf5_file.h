@@ -57,7 +57,8 @@ Id open_file(const std::filesystem::path& path, bool writable, int mpi_handle);
 // default, every row (the only choice in a file of one process).
 struct RowBlock {
   long long begin = 0;
-  long long end = -1;  // -1: to the last row
+  long long end = -1;    // -1: to the last row
+  long long total = -1;  // >= 0: the matrix written holds only rows [begin, end) of `total`
   static RowBlock none() { return {0, 0}; }
 };
 void flush(hid_t file);

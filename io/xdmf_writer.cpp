@@ -1,5 +1,7 @@
 #include "io/xdmf_writer.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cstdio>
 #include <fstream>
@@ -113,7 +115,17 @@ void XdmfWriter::resume(long step) {
   }
 }
 
-void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>& surfaces) {
+void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>& surfaces,
+                             const std::map<std::string, SurfacePart>& parts) {
+  if (!parts.empty() && !(ranks_ && ranks_->all))
+    throw std::invalid_argument("XdmfWriter: parts of a surface are written by ranks together only");
+  for (const auto& [name, part] : parts) {
+    const auto s = std::find_if(surfaces.begin(), surfaces.end(), [&](const Surface& x) { return x.name == name; });
+    if (s == surfaces.end() || part.points_begin < 0 || part.triangles_begin < 0 ||
+        part.points_begin + s->mesh.num_points() > part.points ||
+        part.triangles_begin + s->mesh.num_triangles() > part.triangles)
+      throw std::invalid_argument("XdmfWriter: the part of surface " + name + " does not fit it");
+  }
   if (!frames_.empty() && step <= frames_.back().step) {
     throw std::invalid_argument("XdmfWriter: step " + std::to_string(step) + " after step " +
                                 std::to_string(frames_.back().step));
@@ -140,28 +152,39 @@ void XdmfWriter::write_frame(long step, double time, const std::vector<Surface>&
       const std::string base = "/frames/" + label + "/" + s.name;
       LastMesh next{s.mesh, base + "/points", base + "/triangles"};
       const auto it = last_.find(s.name);
-      const bool same_points = it != last_.end() && it->second.mesh.points.rows() == s.mesh.points.rows() &&
-                               it->second.mesh.points == s.mesh.points;
-      const bool same_triangles = it != last_.end() &&
-                                  it->second.mesh.triangles.rows() == s.mesh.triangles.rows() &&
-                                  it->second.mesh.triangles == s.mesh.triangles;
+      bool same_points = it != last_.end() && it->second.mesh.points.rows() == s.mesh.points.rows() &&
+                         it->second.mesh.points == s.mesh.points;
+      bool same_triangles = it != last_.end() && it->second.mesh.triangles.rows() == s.mesh.triangles.rows() &&
+                            it->second.mesh.triangles == s.mesh.triangles;
+      // This rank's rows of the surface's arrays: its part's, or its share of the whole.
+      const auto part = parts.find(s.name);
+      h5::RowBlock point_rows = rows_of(ranks_, s.name, s.mesh.num_points());
+      h5::RowBlock triangle_rows = rows_of(ranks_, s.name, s.mesh.num_triangles());
+      long long points = s.mesh.num_points(), triangles = s.mesh.num_triangles();
+      if (part != parts.end()) {
+        const SurfacePart& p = part->second;
+        point_rows = {p.points_begin, p.points_begin + s.mesh.num_points(), p.points};
+        triangle_rows = {p.triangles_begin, p.triangles_begin + s.mesh.num_triangles(), p.triangles};
+        points = p.points;
+        triangles = p.triangles;
+        same_points = ranks_->all(same_points);
+        same_triangles = ranks_->all(same_triangles);
+      }
       if (same_points) {
         next.points_path = it->second.points_path;
         h5::soft_link(g.get(), "points", next.points_path);
       } else {
-        h5::write_matrix(g.get(), "points", Eigen::MatrixXd(s.mesh.points), false,
-                         rows_of(ranks_, s.name, s.mesh.num_points()));
+        h5::write_matrix(g.get(), "points", Eigen::MatrixXd(s.mesh.points), false, point_rows);
       }
       if (same_triangles) {
         next.triangles_path = it->second.triangles_path;
         h5::soft_link(g.get(), "triangles", next.triangles_path);
       } else {
-        h5::write_matrix(g.get(), "triangles", Eigen::MatrixXi(s.mesh.triangles),
-                         rows_of(ranks_, s.name, s.mesh.num_triangles()));
+        h5::write_matrix(g.get(), "triangles", Eigen::MatrixXi(s.mesh.triangles), triangle_rows);
       }
-      SurfaceRecord sr{s.name, s.mesh.num_points(), s.mesh.num_triangles(), {}};
+      SurfaceRecord sr{s.name, points, triangles, {}};
       for (const SurfaceField& f : s.fields) {
-        h5::write_matrix(g.get(), f.name, f.values, true, rows_of(ranks_, s.name, s.mesh.num_points()));
+        h5::write_matrix(g.get(), f.name, f.values, true, point_rows);
         sr.fields.push_back({f.name, static_cast<long long>(f.values.cols())});
       }
       last_[s.name] = std::move(next);

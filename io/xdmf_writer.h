@@ -35,6 +35,15 @@ class XdmfWriter {
     int mpi_handle = -1;
     int rank = 0;
     std::function<std::pair<long long, long long>(const std::string& surface, long long rows)> rows;
+    // Whether `mine` holds on every rank (collective): the ranks agree whether the parts of a
+    // surface (below) repeat the last frame's points or triangles.
+    std::function<bool(bool mine)> all;
+  };
+  // A surface of which each rank gives write_frame only its rows: its points are the rows from
+  // `points_begin` on of `points` in all, its triangles likewise (their point numbers the whole
+  // surface's); the ranks' parts cover the surface once.
+  struct SurfacePart {
+    long long points_begin = 0, points = 0, triangles_begin = 0, triangles = 0;
   };
 
   // Starts DIR/STEM.h5 and DIR/STEM.xdmf afresh; or, with `resume_step`, continues them after
@@ -42,8 +51,10 @@ class XdmfWriter {
   explicit XdmfWriter(const std::filesystem::path& dir, std::optional<long> resume_step = std::nullopt,
                       const std::string& stem = "rbcflow", std::optional<Ranks> ranks = std::nullopt);
 
-  // Writes one frame; steps must increase.
-  void write_frame(long step, double time, const std::vector<Surface>& surfaces);
+  // Writes one frame; steps must increase. `parts`: the surfaces of which this rank gives only
+  // its part, by name (ranks only).
+  void write_frame(long step, double time, const std::vector<Surface>& surfaces,
+                   const std::map<std::string, SurfacePart>& parts = {});
   // Whether this build can write a series from several ranks (parallel HDF5).
   static bool shared_by_ranks();
 

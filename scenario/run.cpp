@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "io/vtk_series.h"
 #include "io/xdmf_writer.h"
 #include "libsolver/parallel/communicator.h"
+#include "libsolver/parallel/ownership.h"
 #include "scenario/branch_monitor.h"
 #include "scenario/checkpoint.h"
 #include "scenario/derived.h"
@@ -27,6 +29,13 @@
 
 namespace rbcflow {
 namespace {
+
+// This rank's part of a frame of rbcflow.h5 that the ranks write together: the cells begin ..
+// end - 1 of the surface "cells" (XdmfWriter::SurfacePart).
+struct FramePart {
+  int begin = 0, end = 0;
+  std::map<std::string, XdmfWriter::SurfacePart> surfaces;
+};
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -106,20 +115,32 @@ class RunOutput {
     if (c.output.vtk) vtk_.emplace(dir_, resume);
   }
 
-  // `rows`: cells.csv's rows of the frame (frame_cell_rows).
-  void frame(const CellStepper& stepper, const FlowSolution& s, const std::vector<CellRow>& rows) {
-    const std::vector<Surface> surfaces = frame_surfaces(stepper, s);
-    if (xdmf_) xdmf_->write_frame(stepper.steps(), stepper.time(), surfaces);
-    if (vtk_) vtk_->write_frame(stepper.steps(), stepper.time(), surfaces);
+  // `rows`: cells.csv's rows of the frame (frame_cell_rows); `cells`: every cell's state;
+  // `part`: this rank's part of rbcflow.h5's frame where the ranks write it together.
+  void frame(const CellStepper& stepper, const FlowSolution& s, const std::vector<CellRow>& rows,
+             const CellsForOutput& cells, const std::optional<FramePart>& part) {
+    if (xdmf_ && part) {
+      xdmf_->write_frame(stepper.steps(), stepper.time(), frame_surfaces(stepper, s, cells, part->begin, part->end),
+                         part->surfaces);
+    }
+    if (vtk_ || (xdmf_ && !part)) {
+      const std::vector<Surface> surfaces =
+          frame_surfaces(stepper, s, cells, 0, static_cast<int>(stepper.cells().size()));
+      if (xdmf_ && !part) xdmf_->write_frame(stepper.steps(), stepper.time(), surfaces);
+      if (vtk_) vtk_->write_frame(stepper.steps(), stepper.time(), surfaces);
+    }
     if (cells_csv_) cells_csv_->write(rows);
   }
 
-  void render(const CellStepper& stepper, const FlowSolution& s) {
+  void render(const CellStepper& stepper, const FlowSolution& s, const CellsForOutput& cells) {
     char label[96];
     std::snprintf(label, sizeof label, "step %ld   t = %.4g", stepper.steps(), stepper.time());
     render_.label = label;
-    render_png(frame_surfaces(stepper, s), render_, render_path(dir_, stepper.steps()));
+    render_png(frame_surfaces(stepper, s, cells, 0, static_cast<int>(stepper.cells().size())), render_,
+               render_path(dir_, stepper.steps()));
   }
+
+  bool writes_vtk() const { return vtk_.has_value(); }
 
   DiagnosticsCsv& diagnostics() { return diagnostics_; }
 
@@ -153,6 +174,7 @@ struct Run::State {
   long first = 0, last = 0;
   std::optional<RunOutput> output;        // rank 0
   std::optional<XdmfWriter> other_frames;  // the other ranks' part of rbcflow.h5
+  std::optional<XdmfWriter::Ranks> frame_ranks;  // the ranks that write rbcflow.h5 together
   std::optional<Progress> progress;
   std::optional<fs::path> last_checkpoint;
 
@@ -165,14 +187,46 @@ struct Run::State {
     return cell_rows(stepper, s, flow_axis(c), shear);
   }
 
-  // A frame of the output: every rank calls it (its part of a shared rbcflow.h5).
-  void frame(const CellStepper& stepper, const FlowSolution& s) {
-    const std::vector<CellRow> rows = frame_cell_rows(stepper, s);
-    if (output) {
-      output->frame(stepper, s, rows);
-    } else if (other_frames) {
-      other_frames->write_frame(stepper.steps(), stepper.time(), frame_surfaces(stepper, s));
+  // This rank's part of a frame of rbcflow.h5 that the ranks write together: its block of the
+  // cells (shared_output.h), none where rank 0 writes the frames alone.
+  std::optional<FramePart> frame_part(const CellStepper& stepper) const {
+    if (!(request.c.output.xdmf && frame_ranks)) return std::nullopt;
+    const int nc = static_cast<int>(stepper.cells().size());
+    const OwnedRange block = owned_block(nc, ranks);
+    const long points = cell_frame_points(stepper), triangles = cell_frame_triangles(stepper);
+    FramePart part{block.begin, block.end, {}};
+    if (nc > 0)
+      part.surfaces["cells"] = XdmfWriter::SurfacePart{block.begin * points, nc * points, block.begin * triangles,
+                                                       nc * triangles};
+    return part;
+  }
+
+  // A frame and a render, as the step asks: every rank calls it. The cells' state is brought to
+  // the ranks that write it (CellStepper::cells_for_output): rank 0 every cell for the VTK
+  // frames, a render or the frames of rbcflow.h5 it writes alone, each rank its block for the
+  // frames the ranks write together.
+  void output_state(const CellStepper& stepper, const FlowSolution& s, bool frame_now, bool render_now) {
+    const std::optional<FramePart> part = frame_now ? frame_part(stepper) : std::nullopt;
+    const int nc = static_cast<int>(stepper.cells().size());
+    const bool every_cell = output && ((frame_now && (output->writes_vtk() || (request.c.output.xdmf && !part))) ||
+                                       render_now);
+    std::vector<int> cells;
+    if (every_cell) {
+      for (int c = 0; c < nc; ++c) cells.push_back(c);
+    } else if (part) {
+      for (int c = part->begin; c < part->end; ++c) cells.push_back(c);
     }
+    const CellsForOutput state = stepper.cells_for_output(s, cells);
+    if (frame_now) {
+      const std::vector<CellRow> rows = frame_cell_rows(stepper, s);
+      if (output) {
+        output->frame(stepper, s, rows, state, part);
+      } else if (other_frames) {
+        other_frames->write_frame(stepper.steps(), stepper.time(),
+                                  frame_surfaces(stepper, s, state, part->begin, part->end), part->surfaces);
+      }
+    }
+    if (output && render_now) output->render(stepper, s, state);
   }
 
   // The cells' volume centroids where the vessel has branches (branches.csv), none elsewhere.
@@ -257,7 +311,8 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
     }
     write_case_toml(c, c.output.dir / "case.toml");
   }
-  const std::optional<XdmfWriter::Ranks> frame_ranks = frame_writers(r.ranks, static_cast<long>(stepper.cells().size()));
+  r.frame_ranks = frame_writers(r.ranks, static_cast<long>(stepper.cells().size()));
+  const std::optional<XdmfWriter::Ranks>& frame_ranks = r.frame_ranks;
   if (frame_ranks) r.ranks.sum(0L);  // the other ranks wait until rank 0 has prepared the directory
   // Every rank: each computes its own cells' (cell_centroids.h).
   const std::vector<Eigen::Vector3d> centroids = r.branch_centroids();
@@ -294,9 +349,7 @@ void Run::step() {
     const bool resumed_here = r.resume && n == *r.resume;  // the run before the restart wrote step n
     const bool frame_now = n % c.output.every == 0 && !resumed_here;
     const bool render_now = c.output.render && c.output.render_every > 0 && n % c.output.render_every == 0 && !resumed_here;
-    if (frame_now || render_now) stepper.share_for_output(s);  // every rank: the frames draw every cell's
-    if (frame_now) r.frame(stepper, s);
-    if (r.output && render_now) r.output->render(stepper, s);
+    if (frame_now || render_now) r.output_state(stepper, s, frame_now, render_now);
     const StepReport report = stepper.advance(s);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const std::vector<Eigen::Vector3d> centroids = r.branch_centroids();
@@ -329,10 +382,8 @@ void Run::finish() {
     CellStepper& stepper = *r.stepper;
     const long n = stepper.steps();
     if (!(r.resume && n == *r.resume)) {
-      FlowSolution s = stepper.solve();  // on every rank: its products are shared
-      stepper.share_for_output(s);
-      r.frame(stepper, s);
-      if (r.output && c.output.render) r.output->render(stepper, s);
+      const FlowSolution s = stepper.solve();  // on every rank: its products are shared
+      r.output_state(stepper, s, true, c.output.render);
     }
     const int every = c.output.checkpoint_every;
     if (every > 0 && n % every != 0) {

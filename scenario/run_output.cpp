@@ -1,7 +1,10 @@
 #include "scenario/run_output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "geometry/vessel/vessel_mesh.h"
 #include "io/xdmf_writer.h"
@@ -27,25 +30,48 @@ Eigen::MatrixXd with_poles(const Eigen::MatrixXd& grid_values, const SphGrid& gr
 
 }  // namespace
 
-std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s) {
+long cell_frame_points(const CellStepper& stepper) {
+  return stepper.cells().empty() ? 0 : stepper.grids().n_grid->grid().size() + 2;
+}
+
+long cell_frame_triangles(const CellStepper& stepper) {
+  return stepper.cells().empty() ? 0 : 2 * stepper.grids().n_grid->grid().size();  // SHSurface::triangulate's
+}
+
+std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s, const CellsForOutput& cells,
+                                    int begin, int end) {
   std::vector<Surface> surfaces;
-  const auto& cells = stepper.cells();
-  if (!cells.empty()) {
+  if (!stepper.cells().empty()) {
     const SHTransform& t = *stepper.grids().n_grid;
     const int np = t.grid().size();
+    const auto first = std::lower_bound(cells.cells.begin(), cells.cells.end(), begin) - cells.cells.begin();
+    if (end < begin || first + (end - begin) > static_cast<long>(cells.cells.size()) ||
+        (end > begin && cells.cells[static_cast<std::size_t>(first + (end - begin) - 1)] != end - 1))
+      throw std::invalid_argument("frame_surfaces: the cells " + std::to_string(begin) + ".." + std::to_string(end - 1) +
+                                  " are not all brought for output");
     std::vector<Surface> parts;
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const MembraneState& m = s.membrane[c];
-      Surface part{"cell", cells[c].shape.triangulate(t), {}};
+    for (long i = first; i < first + (end - begin); ++i) {
+      const MembraneState& m = cells.membranes[static_cast<std::size_t>(i)];
+      Surface part{"cell", cells.shapes[static_cast<std::size_t>(i)].triangulate(t), {}};
       const Eigen::MatrixXd tension = 0.5 * m.principal_tension.rowwise().sum();
-      part.fields = {{"velocity", with_poles(s.velocity.middleRows(c * np, np), t.grid())},
-                     {"force", with_poles(s.traction.middleRows(c * np, np), t.grid())},
+      part.fields = {{"velocity", with_poles(cells.velocity.middleRows(i * np, np), t.grid())},
+                     {"force", with_poles(cells.traction.middleRows(i * np, np), t.grid())},
                      {"tension", with_poles(tension, t.grid())},
                      {"max_tension", with_poles(m.principal_tension.col(0), t.grid())},
                      {"J_S", with_poles(m.dilatation, t.grid())}};
       parts.push_back(std::move(part));
     }
-    surfaces.push_back(merge_surfaces("cells", parts));
+    // A rank with no cell to write writes none of the surface, with its fields all the same.
+    if (parts.empty()) parts.push_back(Surface{"cell", TriangleMesh{Eigen::MatrixX3d(0, 3), Eigen::MatrixX3i(0, 3)},
+                                               {{"velocity", Eigen::MatrixXd(0, 3)}, {"force", Eigen::MatrixXd(0, 3)},
+                                                {"tension", Eigen::MatrixXd(0, 1)}, {"max_tension", Eigen::MatrixXd(0, 1)},
+                                                {"J_S", Eigen::MatrixXd(0, 1)}}});
+    Surface merged = merge_surfaces("cells", parts);
+    // Numbered as in the whole frame: the cells before `begin` come first.
+    merged.mesh.triangles.array() += static_cast<int>(begin * cell_frame_points(stepper));
+    for (SurfaceField& f : merged.fields)
+      if (f.name == "cell") f.values.array() += begin;
+    surfaces.push_back(std::move(merged));
   }
   if (const WallCoupling* wall = stepper.wall()) {
     // Drawn without triangles across the box: nodes on the far side of a face are copies,

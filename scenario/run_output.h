@@ -17,8 +17,14 @@
 namespace rbcflow {
 
 // The cells (merged, with a `cell` index) and the wall of the state X^n with the flow s
-// solved there.
-std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s);
+// solved there: the cells `begin` .. `end` - 1 (among `cells`, CellStepper::cells_for_output),
+// their points and triangles numbered as in the whole frame's "cells" surface (cell c's points
+// from c x cell_frame_points on), so that the ranks can write their parts of it.
+std::vector<Surface> frame_surfaces(const CellStepper& stepper, const FlowSolution& s, const CellsForOutput& cells,
+                                    int begin, int end);
+// A cell's points and triangles in a frame (the grid's points and the two poles).
+long cell_frame_points(const CellStepper& stepper);
+long cell_frame_triangles(const CellStepper& stepper);
 
 // One row per cell, each cell's measured by its owner in s.owners (cell_measures.h) and
 // gathered; `flow_axis` for the inclination (signed in the x-z plane of a shear flow along x,

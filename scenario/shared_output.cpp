@@ -16,9 +16,9 @@ std::pair<long long, long long> rows_to_write(long long rows, long cells, const 
 
 std::optional<XdmfWriter::Ranks> frame_writers(const Communicator& ranks, long cells) {
   if (ranks.size() == 1 || !XdmfWriter::shared_by_ranks()) return std::nullopt;
-  return XdmfWriter::Ranks{ranks.mpi_handle(), ranks.rank(), [ranks, cells](const std::string&, long long rows) {
-                             return rows_to_write(rows, cells, ranks);
-                           }};
+  return XdmfWriter::Ranks{ranks.mpi_handle(), ranks.rank(),
+                           [ranks, cells](const std::string&, long long rows) { return rows_to_write(rows, cells, ranks); },
+                           [ranks](bool mine) { return ranks.min(mine ? 1.0 : 0.0) == 1.0; }};
 }
 
 }  // namespace rbcflow

@@ -1,9 +1,10 @@
 #pragma once
 // Which part of the output files each rank of a run writes when the ranks write them together
 // (parallel HDF5: the checkpoints, io/checkpoint.h, and the frames of rbcflow.h5,
-// io/xdmf_writer.h). Every rank holds the whole state; each writes the rows of its own cells
-// (libsolver/parallel/ownership.h) and a block of the rows of everything else, so that the
-// ranks' rows cover each array once.
+// io/xdmf_writer.h): each writes the rows of its block of the cells (owned_block,
+// libsolver/parallel/ownership.h; a frame's cells are brought to it, CellStepper::
+// cells_for_output, a checkpoint's state gathered) and a block of the rows of everything
+// else, so that the ranks' rows cover each array once.
 #include <optional>
 #include <utility>
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <set>
-#include <span>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
@@ -15,7 +14,6 @@
 #include "libsolver/operators/cell_layers_at_points.h"
 #include "libsolver/operators/cell_owners.h"
 #include "libsolver/parallel/owned_rows.h"
-#include "libsolver/parallel/share_blocks.h"
 #include "libsolver/stepper/cell_centroids.h"
 #include "libsolver/stepper/cell_measures.h"
 #include "libsolver/stepper/cell_flux.h"
@@ -27,36 +25,6 @@
 namespace rbcflow {
 
 namespace {
-
-// The arrays of a membrane state, as spans (share_blocks).
-std::vector<std::span<double>> arrays(MembraneState& m) {
-  auto span = [](auto& a) { return std::span<double>(a.data(), static_cast<std::size_t>(a.size())); };
-  return {span(m.traction.values()), span(m.traction_grid), span(m.dilatation), span(m.principal_tension),
-          std::span<double>(&m.elastic_energy, 1)};
-}
-
-// Every cell's membrane state on every rank, from those of the cells' owners in the step's
-// products (the others sized here). The owners' blocks of the cells in owner order have
-// owned_block's sizes (cell_owners.h), share_blocks' blocks.
-void share_membranes(std::vector<MembraneState>& membranes, const CellOwners& owners, const std::vector<Cell>& cells,
-                     int np, const Communicator& ranks) {
-  if (ranks.size() == 1) return;
-  const OwnedRange mine{owners.first[ranks.rank()], owners.first[ranks.rank() + 1]};
-  std::vector<std::vector<std::span<double>>> items;
-  for (int k = 0; k < static_cast<int>(owners.order.size()); ++k) {
-    const int c = owners.order[k];
-    MembraneState& m = membranes[c];
-    if (!mine.contains(k)) {
-      m.traction = SHCoeffs(cells[c].shape.coeffs().order(), 3);
-      m.traction_grid = Eigen::MatrixXd::Zero(np, 3);
-      m.dilatation = Eigen::VectorXd::Zero(np);
-      m.principal_tension = Eigen::MatrixXd::Zero(np, 2);
-      m.elastic_energy = 0.0;
-    }
-    items.push_back(arrays(m));
-  }
-  share_blocks(ranks, items);
-}
 
 // Pointers to the cells' shapes, by cell number (held_shapes.h).
 std::vector<SHCoeffs*> shapes_of(std::vector<Cell>& cells) {
@@ -264,7 +232,7 @@ FlowSolution CellStepper::solve() const {
     ScopedTimer membrane_timer(timing.membrane);
     // Each rank the membranes of the cells it owns in the products; the operators bring the
     // rows of the others' tractions they read (halo_density.h), the output the rest of their
-    // states (share_for_output).
+    // states (cells_for_output).
     Eigen::MatrixXd owned(static_cast<Eigen::Index>(end - first) * np, 3);
 #pragma omp parallel for schedule(dynamic)
     for (int k = first; k < end; ++k) {
@@ -578,28 +546,6 @@ FlowSolution CellStepper::solve() const {
   return s;
 }
 
-void CellStepper::share_for_output(FlowSolution& s) {
-  const int nc = static_cast<int>(cells_.size());
-  if (static_cast<int>(s.membrane.size()) != nc) throw std::invalid_argument("share_for_output: not this stepper's solution");
-  const Communicator& ranks = options_.domain.ranks;
-  if (ranks.size() == 1 || nc == 0) return;
-  share_shapes(shapes_of(cells_), history_owners_, ranks);  // until advance() moves the cells
-  const CellOwners& owners = s.owners;
-  share_membranes(s.membrane, owners, cells_, points_per_cell(), ranks);
-  const int np = points_per_cell(), first = owners.first[ranks.rank()], end = owners.first[ranks.rank() + 1];
-  // Every rank's own cells' rows, unless shared already (a rank whose block is every
-  // cell cannot tell by itself).
-  const bool shared = ranks.min(s.velocity.rows() == static_cast<Eigen::Index>(nc) * np ? 1 : 0) == 1;
-  if (!shared) {
-    const OwnedRows by_owners(owners.first, np, ranks);
-    s.velocity = owners.to_cell_order(by_owners.gather(owned_velocity(s)), np);
-    // solve() leaves the owned cells' rows of the traction, as of the velocity.
-    if (s.traction.rows() != static_cast<Eigen::Index>(end - first) * np)
-      throw std::invalid_argument("share_for_output: not this stepper's solution");
-    s.traction = owners.to_cell_order(by_owners.gather(s.traction), np);
-  }
-}
-
 double CellStepper::enforce_volume(int c) {
   // Move the surface along its normal by the uniform delta = (V0 - V) / A (twice: the
   // correction is first order), the variational volume constraint of section 10.2.
@@ -805,7 +751,7 @@ Eigen::MatrixXd CellStepper::owned_velocity(const FlowSolution& s) const {
   if (s.velocity.rows() == owned) return s.velocity;
   if (s.velocity.rows() != static_cast<Eigen::Index>(nc) * np)
     throw std::invalid_argument("advance: not this stepper's solution");
-  return rows_of_owned(s.velocity, owners_by_block(nc, 1), owners, ranks.rank(), np);  // after share_for_output
+  return rows_of_owned(s.velocity, owners_by_block(nc, 1), owners, ranks.rank(), np);  // every cell's rows
 }
 
 void CellStepper::migrate_history(const CellOwners& to) {

@@ -57,6 +57,14 @@ struct CellStepperOptions {
 
 struct CellMeasures;  // cell_measures.h
 
+// What CellStepper::cells_for_output brings a rank: the state of the cells it writes.
+struct CellsForOutput {
+  std::vector<int> cells;                // ascending cell numbers
+  std::vector<SHSurface> shapes;         // X^n, one a cell of `cells`
+  std::vector<MembraneState> membranes;  // at X^n
+  Eigen::MatrixXd velocity, traction;    // U^n and f^n, stacked over `cells` (nodes x 3)
+};
+
 struct Cell {
   SHSurface shape;                       // current surface, order N
   std::shared_ptr<const Membrane> membrane;
@@ -67,14 +75,13 @@ struct Cell {
 struct FlowSolution {
   // U^n, stacked over cells (nodes x 3). On several ranks solve() leaves the rows of this rank's
   // own cells in the products, in owner order (`owners`: the cells advance() moves, whose rows
-  // the GMRES of (10) ended with here); CellStepper::share_for_output every cell's.
+  // the GMRES of (10) ended with here); CellStepper::cells_for_output brings the rows output reads.
   Eigen::MatrixXd velocity;
   // Hydrodynamic traction f^n on the cells, stacked. On several ranks solve() leaves the rows of
-  // this rank's own cells in the products, in owner order, as of the velocity;
-  // CellStepper::share_for_output every cell's.
+  // this rank's own cells in the products, in owner order, as of the velocity.
   Eigen::MatrixXd traction;
   // Per cell. On several ranks solve() fills only the rank's own cells in the products (owners)
-  // and leaves the others empty; CellStepper::share_for_output fills them all.
+  // and leaves the others empty.
   std::vector<MembraneState> membrane;
   CellOwners owners;          // the cells' owners in the step's products (cell_owners.h)
   PointField wall_force;      // F^n at the wall nodes (empty without a wall)
@@ -154,11 +161,12 @@ class CellStepper {
   FlowSolution solve() const;
   StepReport advance(const FlowSolution& s);
   StepReport step() { return advance(solve()); }
-  // Every cell's membrane state, traction and velocity in `s` (this stepper's solve()) on every
-  // rank, for output, and every cell's shape in cells() until advance(): solve() computes each
-  // rank's own cells' and brings each rank only the shapes, tractions and velocities it reads.
-  // Collective: every rank calls it; on one rank it changes nothing.
-  void share_for_output(FlowSolution& s);
+  // The state of `cells` (cell numbers) at X^n and U^n of `s` (this stepper's solve(), before
+  // advance()), for output: their shapes, membrane states and rows of the velocity and the
+  // traction, brought from the ranks that hold them (each only its own cells' between steps).
+  // Collective: each rank names the cells it writes (a frame writer of rbcflow.h5 its block of
+  // the cells, rank 0 every cell for the VTK frames and renders); a rank may name none.
+  CellsForOutput cells_for_output(const FlowSolution& s, std::vector<int> cells) const;
 
   double time() const { return state_.time; }
   long steps() const { return state_.steps; }
@@ -168,7 +176,7 @@ class CellStepper {
   const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
   // Every cell; on several ranks only the shapes of this rank's own cells (those it moved last)
   // are held between steps (held_shapes.h: the others keep their order and no coefficients),
-  // every shape after share_for_output until advance(), and after restore() until the first.
+  // and every shape after restore() until the first advance().
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
@@ -210,7 +218,7 @@ class CellStepper {
   // Returns the relative volume it restored, |V0 - V| / V0 before the correction.
   double enforce_volume(int c);
   // The rows of this rank's own cells in s.owners of U^n in `s`, in owner order: all of
-  // s.velocity as solve() leaves it, or those cells' rows after share_for_output. Throws
+  // s.velocity as solve() leaves it, or those cells' rows of every cell's (cell order). Throws
   // std::invalid_argument for a solution of another stepper.
   Eigen::MatrixXd owned_velocity(const FlowSolution& s) const;
   // The velocities' history brought to the rows of this rank's cells in `to` (a step's owners)

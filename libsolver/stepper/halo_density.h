@@ -38,7 +38,7 @@ class HaloDensity {
   const Eigen::MatrixXd& owned() const { return owned_; }
   long rows_received() const { return homes_.rows_received(); }
   // The operators are done with the density. One rank: every cell's rows in cell order; several:
-  // this rank's owned cells' rows in owner order (CellStepper::share_for_output gathers them).
+  // this rank's owned cells' rows in owner order (CellStepper::cells_for_output brings them).
   Eigen::MatrixXd release();
 
  private:

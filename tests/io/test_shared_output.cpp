@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "io/checkpoint.h"
@@ -148,7 +149,8 @@ TEST(SharedFrames, EachRankWritesItsRows) {
   {
     XdmfWriter w(dir, std::nullopt, "rbcflow",
                  XdmfWriter::Ranks{static_cast<int>(MPI_Comm_c2f(MPI_COMM_WORLD)), rank(),
-                                   [](const std::string&, long long rows) { return block(rows, rank(), ranks()); }});
+                                   [](const std::string&, long long rows) { return block(rows, rank(), ranks()); },
+                                   {}});
     w.write_frame(10, 0.5, {spoiled(0.0)});
     w.write_frame(20, 1.0, {spoiled(1.0)});
   }
@@ -162,6 +164,74 @@ TEST(SharedFrames, EachRankWritesItsRows) {
     EXPECT_EQ(f.surfaces[0].fields[0].values, (whole.fields[0].values.array() + shift).matrix());
   }
   EXPECT_TRUE(fs::exists(dir / "rbcflow.xdmf"));
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank() == 0) fs::remove_all(dir);
+}
+
+// Each rank gives write_frame only its part of a surface (XdmfWriter::SurfacePart): two cells
+// of 3 points and 2 triangles, rank r the cells of its block (none on the third of 3 ranks),
+// the triangles numbered as in the whole. The file holds the whole surface; the second frame's
+// triangles, the same on every rank, are a link to the first's; in the third only rank 0's
+// points are the second's, and every rank writes them.
+TEST(SharedFrames, EachRankGivesItsPart) {
+  ASSERT_TRUE(XdmfWriter::shared_by_ranks());
+  const fs::path dir = shared_dir() / "parts";
+  if (rank() == 0) fs::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  Surface whole{"cells", {}, {}};
+  whole.mesh.points.resize(6, 3);
+  whole.mesh.triangles.resize(4, 3);
+  for (int i = 0; i < 6; ++i) whole.mesh.points.row(i) << i, std::sin(i), 0.25 * i;
+  for (int c = 0; c < 2; ++c) {
+    whole.mesh.triangles.row(2 * c) << 3 * c, 3 * c + 1, 3 * c + 2;
+    whole.mesh.triangles.row(2 * c + 1) << 3 * c + 2, 3 * c + 1, 3 * c;
+  }
+  whole.fields = {{"J_S", whole.mesh.points.col(0) * 0.1}};
+  const auto [first, end] = block(2, rank(), ranks());  // this rank's cells
+  const auto part = [&](double shift) {
+    Surface s{"cells", {}, {}};
+    s.mesh.points = whole.mesh.points.middleRows(3 * first, 3 * (end - first));
+    s.mesh.points.array() += shift;
+    s.mesh.triangles = whole.mesh.triangles.middleRows(2 * first, 2 * (end - first));
+    s.fields = {{"J_S", whole.fields[0].values.middleRows(3 * first, 3 * (end - first))}};
+    return s;
+  };
+  const std::map<std::string, XdmfWriter::SurfacePart> parts{{"cells", {3 * first, 6, 2 * first, 4}}};
+  {
+    XdmfWriter w(dir, std::nullopt, "rbcflow",
+                 XdmfWriter::Ranks{static_cast<int>(MPI_Comm_c2f(MPI_COMM_WORLD)), rank(),
+                                   [](const std::string&, long long rows) { return block(rows, rank(), ranks()); },
+                                   [](bool mine) {
+                                     int all = mine ? 1 : 0;
+                                     MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+                                     return all == 1;
+                                   }});
+    w.write_frame(10, 0.5, {part(0.0)}, parts);
+    w.write_frame(20, 1.0, {part(1.0)}, parts);
+    w.write_frame(30, 1.5, {part(rank() == 0 ? 1.0 : 2.0)}, parts);  // rank 0's points as in frame 20
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  ASSERT_EQ(read_xdmf_frames(dir).size(), 3u);
+  for (const long step : {10L, 20L, 30L}) {
+    const XdmfFrame f = read_xdmf_frame(dir, step);
+    ASSERT_EQ(f.surfaces.size(), 1u);
+    EXPECT_EQ(f.surfaces[0].mesh.triangles, whole.mesh.triangles) << "step " << step;
+    Eigen::MatrixXd expected = whole.mesh.points;
+    if (step == 20) expected.array() += 1.0;
+    if (step == 30) {
+      const auto [b0, e0] = block(2, 0, ranks());
+      expected.array() += 2.0;
+      expected.middleRows(3 * b0, 3 * (e0 - b0)) = whole.mesh.points.middleRows(3 * b0, 3 * (e0 - b0)).array() + 1.0;
+    }
+    EXPECT_EQ(f.surfaces[0].mesh.points, expected) << "step " << step;
+    EXPECT_EQ(f.surfaces[0].fields[0].values, whole.fields[0].values) << "step " << step;
+  }
+  // An XDMF series of one process takes no parts.
+  if (rank() == 0) {
+    fs::create_directories(dir / "alone");
+    XdmfWriter alone(dir / "alone");
+    EXPECT_THROW(alone.write_frame(0, 0.0, {whole}, {{"cells", {0, 6, 0, 4}}}), std::invalid_argument);
+  }
   MPI_Barrier(MPI_COMM_WORLD);
   if (rank() == 0) fs::remove_all(dir);
 }

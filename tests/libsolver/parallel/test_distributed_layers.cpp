@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <numeric>
 #include <optional>
 #include <random>
 #include <span>
@@ -1246,8 +1247,8 @@ TEST(DistributedStepper, CellsMovedOnTheirRanksAsOnOne) {
 
 // The membranes on the ranks (cell_stepper.h): each rank computes the membranes of its cells in
 // the step's products (here in free space its block of the cells) and shares only their tractions, which are then the same bits on every rank and as on
-// one rank; the largest area strain is the ranks' largest; share_for_output gives every rank
-// every cell's state, the same bits as one rank's, and every cell's velocity. From the state after one step with cell 2's
+// one rank; the largest area strain is the ranks' largest; cells_for_output brings a rank the
+// state of the cells it names, the same bits as one rank's: every cell's, or none. From the state after one step with cell 2's
 // velocity ten times the solution's, so that the last rank's cell is strained most.
 TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   const Communicator world = Communicator::world();
@@ -1277,19 +1278,26 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   auto strain = [&](int c) { return (a.membrane[c].dilatation.array() - 1.0).abs().maxCoeff(); };
   std::printf("  rank %d: the cells' largest area strains %.3e %.3e %.3e\n", world.rank(), strain(0), strain(1), strain(2));
   EXPECT_GT(strain(2), 2 * std::max(strain(0), strain(1)));
-  const FlowSolution unshared = b;
-  shared.share_for_output(b);
-  EXPECT_EQ(b.traction, a.traction);
-  EXPECT_LT(relative(b.velocity, a.velocity), 1e-13);  // free space, lambda = 1: the right-hand side's sums
-  for (int c = 0; c < 3; ++c) {
-    const MembraneState &x = a.membrane[c], &y = b.membrane[c];
+  // Rank 0 every cell, the others only the last, as output asks (a frame writer its block).
+  const std::vector<int> named = world.rank() == 0 ? std::vector<int>{0, 1, 2} : std::vector<int>{2};
+  const CellsForOutput out = shared.cells_for_output(b, named), alone = one.cells_for_output(a, {0, 1, 2});
+  ASSERT_EQ(out.cells, named);
+  for (std::size_t i = 0; i < named.size(); ++i) {
+    const int c = named[i];
+    EXPECT_EQ(Eigen::MatrixXd(out.traction.middleRows(static_cast<Eigen::Index>(i) * np, np)), Eigen::MatrixXd(a.traction.middleRows(c * np, np)));
+    // free space, lambda = 1: the velocity is the right-hand side, its sums in the ranks' order
+    EXPECT_LT(relative(out.velocity.middleRows(static_cast<Eigen::Index>(i) * np, np), a.velocity.middleRows(c * np, np)), 1e-13) << "cell " << c;
+    EXPECT_EQ(out.shapes[i].coeffs().values(), one.cells()[c].shape.coeffs().values()) << "cell " << c;
+    const MembraneState &x = a.membrane[c], &y = out.membranes[i];
     EXPECT_EQ(y.traction.values(), x.traction.values()) << "cell " << c;
     EXPECT_EQ(y.traction_grid, x.traction_grid) << "cell " << c;
     EXPECT_EQ(y.dilatation, x.dilatation) << "cell " << c;
     EXPECT_EQ(y.principal_tension, x.principal_tension) << "cell " << c;
     EXPECT_EQ(y.elastic_energy, x.elastic_energy) << "cell " << c;
   }
-  const StepReport ra = one.advance(a), rb = shared.advance(unshared);
+  EXPECT_EQ(alone.traction, a.traction);  // one process: its own rows, in cell order
+  EXPECT_EQ(shared.cells_for_output(b, {}).cells.size(), 0u);
+  const StepReport ra = one.advance(a), rb = shared.advance(b);
   EXPECT_GT(ra.max_area_strain, 0.0);
   EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
 }
@@ -1314,7 +1322,7 @@ Cell strained_red_cell(const SHCoeffs& x, double rest_scale, const std::shared_p
 // the tube: one step's solve on the ranks gives one process's velocity (to 1e-9: the sums in
 // another order, the same iterations), the traction's rows a rank holds are one process's bits
 // and the others zero, and where the grid is split some rank receives fewer rows than an
-// all-gather would bring; share_for_output then gives every rank every row.
+// all-gather would bring; cells_for_output then brings a rank every row it names.
 CellStepper sixteen_strained_cells_in_a_tube(const std::shared_ptr<const CellGrids>& grids, const Communicator& ranks,
                                              double viscosity_ratio = 1.0,
                                              std::vector<std::vector<SectionQuadrature>> flux_sections = {}) {
@@ -1384,9 +1392,11 @@ TEST(DistributedStepper, TractionBroughtOnlyWhereRead) {
       EXPECT_GT(ranks_receiving_fewer, 0);
     }
   }
-  shared.share_for_output(b);
-  EXPECT_EQ(b.traction, a.traction);
-  EXPECT_LT(relative(b.velocity, a.velocity), 1e-9);
+  std::vector<int> every(nc);
+  std::iota(every.begin(), every.end(), 0);
+  const CellsForOutput out = shared.cells_for_output(b, every);
+  EXPECT_EQ(out.traction, a.traction);
+  EXPECT_LT(relative(out.velocity, a.velocity), 1e-9);
 }
 
 // The flux sections' velocity on the ranks (section_flux.h): with lambda != 1 the cells' double
