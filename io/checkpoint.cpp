@@ -39,6 +39,14 @@ void CheckpointWriter::add(const std::string& name, Item item) {
   }
 }
 
+void CheckpointWriter::put_rows(const std::string& name, long long total_rows, long long first_row,
+                                const Eigen::MatrixXd& rows) {
+  if (first_row < 0 || first_row + rows.rows() > total_rows)
+    throw std::invalid_argument("checkpoint item " + name + ": rows " + std::to_string(first_row) + ".." +
+                                std::to_string(first_row + rows.rows()) + " of " + std::to_string(total_rows));
+  add(name, Rows{rows, first_row, total_rows});
+}
+
 void CheckpointWriter::put(const std::string& name, long long value) { add(name, value); }
 void CheckpointWriter::put(const std::string& name, double value) { add(name, value); }
 void CheckpointWriter::put(const std::string& name, const std::string& value) { add(name, value); }
@@ -53,7 +61,12 @@ void CheckpointWriter::write_items(std::int64_t file, const Ranks* ranks) const 
     std::visit(
         [&, &n = name](const auto& v) {
           using T = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<T, Eigen::MatrixXd> || std::is_same_v<T, Eigen::MatrixXi>) {
+          if constexpr (std::is_same_v<T, Rows>) {
+            if (!ranks && (v.first != 0 || v.rows.rows() != v.total))
+              throw std::runtime_error("item " + n + ": a part of its rows in a file of one process");
+            h5::write_matrix(f, n, v.rows, false,
+                             ranks ? h5::RowBlock{v.first, v.first + v.rows.rows(), v.total} : h5::RowBlock{});
+          } else if constexpr (std::is_same_v<T, Eigen::MatrixXd> || std::is_same_v<T, Eigen::MatrixXi>) {
             h5::RowBlock rows;
             if (ranks) {
               const auto [begin, end] = ranks->rows(n, v.rows());

@@ -43,6 +43,9 @@ class CheckpointWriter {
       add(name, Eigen::MatrixXi(m));
     }
   }
+  // The rows [first_row, first_row + rows.rows()) of a matrix of `total_rows` rows, whose other
+  // rows the other ranks give (write(file, ranks)); in a file of one process, every row.
+  void put_rows(const std::string& name, long long total_rows, long long first_row, const Eigen::MatrixXd& rows);
   void put(const std::string& name, long long value);
   void put(const std::string& name, double value);
   void put(const std::string& name, const std::string& value);
@@ -52,8 +55,8 @@ class CheckpointWriter {
   void write(const std::filesystem::path& file) const;
 
   // The ranks of a run writing one checkpoint together (parallel HDF5: io/hdf5_file.h). Each
-  // holds every item; `rows` says which rows of an item (its name and row count) this rank
-  // writes, and the ranks' rows must cover every item once. `tag` names the temporary file,
+  // names every item; `rows` says which rows of a whole item (its name and row count) this rank
+  // writes, an item of put_rows its own rows, and the ranks' rows must cover every item once. `tag` names the temporary file,
   // the same on every rank. Rank 0 makes the finished file the checkpoint.
   struct Ranks {
     int mpi_handle = -1;
@@ -67,7 +70,11 @@ class CheckpointWriter {
   static bool shared_by_ranks();
 
  private:
-  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
+  struct Rows {  // put_rows
+    Eigen::MatrixXd rows;
+    long long first = 0, total = 0;
+  };
+  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, Rows, long long, double, std::string>;
   void add(const std::string& name, Item item);
   // Every item into the open file `f`; with `ranks`, each of this rank's rows.
   void write_items(std::int64_t f, const Ranks* ranks) const;  // f: the file's hid_t

@@ -8,24 +8,36 @@
 #include <utility>
 
 #include "io/output_dir.h"
-#include "libsolver/parallel/ownership.h"
 #include "scenario/shared_output.h"
 
 namespace rbcflow {
 namespace {
 
+// `parts`: the ranks write the file together (parallel HDF5), each from its part of the state.
 class CheckpointOut : public StateArchive {
  public:
-  explicit CheckpointOut(CheckpointWriter& w) : w_(w) {}
+  CheckpointOut(CheckpointWriter& w, bool parts) : w_(w), parts_(parts) {}
   bool reading() const override { return false; }
   void real(const std::string& name, double& x) override { w_.put(name, x); }
   void integer(const std::string& name, long& x) override { w_.put(name, static_cast<long long>(x)); }
   void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
     if (required || x.size()) w_.put(name, x);
   }
+  void indices(const std::string& name, std::vector<int>& x) override {
+    if (!x.empty()) w_.put(name, Eigen::Map<const Eigen::VectorXi>(x.data(), static_cast<Eigen::Index>(x.size())));
+  }
+  bool takes_parts() const override { return parts_; }
+  void part(const std::string& name, long long total_rows, long long first_row, const Eigen::MatrixXd& rows) override {
+    if (parts_) {
+      w_.put_rows(name, total_rows, first_row, rows);
+    } else {
+      StateArchive::part(name, total_rows, first_row, rows);
+    }
+  }
 
  private:
   CheckpointWriter& w_;
+  bool parts_;
 };
 
 // Checkpoint's accessors throw CheckpointError naming the file and the item for what is
@@ -39,25 +51,16 @@ class CheckpointIn : public StateArchive {
   void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
     x = required || k_.has(name) ? k_.matrix(name) : Eigen::MatrixXd();
   }
+  void indices(const std::string& name, std::vector<int>& x) override {
+    x.clear();
+    if (!k_.has(name)) return;
+    const Eigen::MatrixXi& m = k_.int_matrix(name);
+    x.assign(m.data(), m.data() + m.size());
+  }
 
  private:
   const Checkpoint& k_;
 };
-
-// Which rows of a checkpoint item this rank writes: the items of one cell ("cells/K/...") are
-// its owner's, any other as rows_to_write says (shared_output.h).
-std::pair<long long, long long> item_rows(const std::string& name, long long rows, long cells,
-                                          const Communicator& ranks) {
-  if (name.rfind("cells/", 0) == 0 && cells > 0) {
-    const std::string rest = name.substr(6);
-    const std::size_t slash = rest.find('/');
-    if (slash != std::string::npos && slash > 0 && rest.find_first_not_of("0123456789") == slash) {
-      const bool mine = owned_block(static_cast<int>(cells), ranks).contains(std::stoi(rest.substr(0, slash)));
-      return mine ? std::pair{0LL, rows} : std::pair{0LL, 0LL};
-    }
-  }
-  return rows_to_write(rows, cells, ranks);
-}
 
 }  // namespace
 
@@ -66,16 +69,17 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
   CheckpointWriter w(case_fingerprint(c));
   w.put("state_version", static_cast<long long>(kCheckpointStateVersion));
   w.put("case", case_toml(c));
-  CheckpointOut out(w);
-  stepper.save(out);
-  if (ranks.size() == 1 || !CheckpointWriter::shared_by_ranks()) {
+  const bool together = ranks.size() > 1 && CheckpointWriter::shared_by_ranks();
+  CheckpointOut out(w, together);
+  stepper.save(out);  // collective on several ranks
+  if (!together) {
     if (ranks.root()) w.write(file);
     return;
   }
   const long cells = static_cast<long>(stepper.cells().size());
   const long tag = ranks.sum(ranks.root() ? static_cast<long>(::getpid()) : 0L);  // rank 0's process id
   w.write(file, {ranks.mpi_handle(), ranks.rank(), std::to_string(tag),
-                 [&](const std::string& name, long long rows) { return item_rows(name, rows, cells, ranks); }});
+                 [&](const std::string&, long long rows) { return rows_to_write(rows, cells, ranks); }});
 }
 
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {

@@ -3,7 +3,9 @@
 // HDF5 file (io/checkpoint.h) under the case's fingerprint, with the version of their layout,
 // `state_version`. Version 1 (no such item) and 2 read alike; 2 no longer carries the cells'
 // reference shapes, which nothing read, and adds `case`, the case as run (case.toml's text),
-// so that a checkpoint alone can be continued (case_of_checkpoint).
+// so that a checkpoint alone can be continued (case_of_checkpoint). Version 3 may hold the
+// cells' velocity history in the order of `cells/velocity_order` (written by several ranks,
+// each its own cells' rows), which a reader of version 2 would take for cell order.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -15,12 +17,12 @@
 
 namespace rbcflow {
 
-inline constexpr long kCheckpointStateVersion = 2;
+inline constexpr long kCheckpointStateVersion = 3;
 
 // Written atomically (io/checkpoint.h); throws std::runtime_error naming the file when it
 // cannot be. Every rank of a run calls it: with parallel HDF5 the ranks write the file
-// together (each its own cells' items and rows, and its block of the rows of the rest), else
-// rank 0 writes it alone.
+// together, each its own cells' shapes and velocities (nothing gathered: CellStepper::save)
+// and its block of the rows of the rest, else rank 0 writes it alone from the state gathered.
 void write_checkpoint(const CellStepper& stepper, const Case& c, const std::filesystem::path& file,
                       const Communicator& ranks = {});
 // Reads a checkpoint of this case into the stepper; throws CheckpointError (exit 2) naming the

@@ -807,9 +807,26 @@ StepperState CellStepper::state() const {
   return s;
 }
 
+StepperState CellStepper::held_state() const {
+  const Communicator& ranks = options_.domain.ranks;
+  if (ranks.size() == 1 || cells_.empty()) return state();
+  StepperState s = state_;
+  StepperState::Part part{history_owners_.order, history_owners_.first[ranks.rank()],
+                          history_owners_.first[ranks.rank() + 1], points_per_cell()};
+  std::vector<char> mine(cells_.size(), 0);
+  for (int p = part.begin; p < part.end; ++p) mine[static_cast<std::size_t>(part.order[p])] = 1;
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    const SHCoeffs& x = cells_[c].shape.coeffs();
+    s.shapes.push_back(mine[c] ? x : shape_not_held(x.order()));
+  }
+  s.part = std::move(part);
+  return s;
+}
+
 void CellStepper::restore(const StepperState& s) {
   const std::size_t nc = cells_.size();
   const int np = points_per_cell();
+  if (s.part) throw std::invalid_argument("restore: a rank's part of a state, not the whole state");
   if (s.shapes.size() != nc || s.volume0.size() != nc || s.area0.size() != nc)
     throw std::invalid_argument("restore: the state has " + std::to_string(s.shapes.size()) + " cells, the run " +
                                 std::to_string(nc));

@@ -152,6 +152,18 @@ struct StepperState {
   PointField older_wall_force;        // empty before the second step or without a wall
   Eigen::MatrixXd oldest_velocity;    // empty before the third step
   std::vector<double> volume0, area0;
+
+  // A rank's part of the state on several ranks, to be written by the ranks together
+  // (CellStepper::save): the cells in the order of the velocities' rows (every rank's, rank 0's
+  // first) and this rank's block of them, [begin, end). `shapes` then hold those cells'
+  // shapes (the others keep their order and no coefficients) and the velocities those cells'
+  // rows. Without it the state is whole, in cell order, as a checkpoint is always read back.
+  struct Part {
+    std::vector<int> order;
+    int begin = 0, end = 0;
+    int points_per_cell = 0;
+  };
+  std::optional<Part> part;
 };
 
 class CellStepper {
@@ -195,10 +207,15 @@ class CellStepper {
 
   // The whole state, every cell's shape and velocities gathered from the ranks: collective.
   StepperState state() const;
+  // This rank's part of the state, its own cells' shapes and velocities (StepperState::part),
+  // nothing gathered; the whole state on one rank.
+  StepperState held_state() const;
   // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
   void restore(const StepperState& s);
   // The state as checkpoint items (StepperState::archive) and the wall's nodes, which a
-  // restart checks against the vessel as meshed then; load() throws as restore() does.
+  // restart checks against the vessel as meshed then; load() throws as restore() does. On
+  // several ranks save() is collective: each rank gives its part where the archive takes parts
+  // (held_state()), else the whole state (state()).
   void save(StateArchive& a) const;
   void load(StateArchive& a);
   // load() of a state discretised otherwise (another order of the cells or another time

@@ -4,7 +4,9 @@
 // field is one line beside the others (StepperState::archive). The file format is the caller's
 // (scenario/checkpoint.h writes HDF5); libsolver knows no files.
 #include <Eigen/Core>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace rbcflow {
 
@@ -18,6 +20,22 @@ class StateArchive {
   virtual void real(const std::string& name, double& x) = 0;
   virtual void integer(const std::string& name, long& x) = 0;
   virtual void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) = 0;
+  // Cell numbers; written only when not empty, read as empty when absent.
+  virtual void indices(const std::string& name, std::vector<int>& x) = 0;
+
+  // Writing on several ranks: whether the archive takes a matrix from the ranks' parts of its
+  // rows (part()), each rank giving those it holds, so that no rank gathers the whole state
+  // (CellStepper::save). Otherwise every rank gives every item whole.
+  virtual bool takes_parts() const { return false; }
+  // Writing: the rows [first_row, first_row + rows.rows()) of a matrix of `total_rows` rows;
+  // every rank names every such matrix, with its own rows (possibly none). Where the archive
+  // takes no parts they must be the whole matrix.
+  virtual void part(const std::string& name, long long total_rows, long long first_row, const Eigen::MatrixXd& rows) {
+    if (first_row != 0 || rows.rows() != total_rows)
+      throw std::logic_error(name + ": a part of a matrix given to an archive that takes whole matrices");
+    Eigen::MatrixXd whole = rows;
+    matrix(name, whole, true);
+  }
 };
 
 }  // namespace rbcflow

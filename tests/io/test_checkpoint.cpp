@@ -96,6 +96,31 @@ TEST(Checkpoint, MissingOrMistypedItemNamesFileAndItem) {
   fs::remove_all(dir);
 }
 
+// put_rows in a file of one process: every row, or a clear error naming the item; rows beyond
+// the matrix are refused when put.
+TEST(Checkpoint, RowsOfOneProcessAreEveryRow) {
+  const fs::path dir = fresh_dir("rbcflow_test_checkpoint_rows");
+  const Eigen::MatrixXd m = Eigen::MatrixXd::Constant(5, 3, 0.5);
+  CheckpointWriter whole("f");
+  whole.put_rows("cells/previous_velocity", 5, 0, m);
+  whole.write(dir / "whole.h5");
+  EXPECT_EQ(Checkpoint::read(dir / "whole.h5", "f").matrix("cells/previous_velocity"), m);
+
+  CheckpointWriter part("f");
+  part.put_rows("cells/previous_velocity", 8, 3, m);
+  try {
+    part.write(dir / "part.h5");
+    FAIL() << "a part of the rows written by one process";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("item cells/previous_velocity: a part of its rows in a file of one process"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "part.h5"));
+  EXPECT_THROW(part.put_rows("cells/older_velocity", 4, 0, m), std::invalid_argument);
+  fs::remove_all(dir);
+}
+
 TEST(Checkpoint, AnotherCaseIsRejected) {
   const fs::path dir = fresh_dir("rbcflow_test_checkpoint_case");
   CheckpointWriter("aaaaaaaaaaaaaaaa").write(dir / "c.h5");

@@ -78,9 +78,19 @@ TEST(SharedCheckpoint, EachRankWritesItsRows) {
   for (int i = 0; i < held_labels.rows(); ++i)
     if (i < lb || i >= le) held_labels.row(i).setConstant(-1);
 
+  // A part only: the rows the rank gives, the last rank's first (not the blocks' order), and
+  // a part no rank but the last gives (a cell's coefficients held by one rank).
+  Eigen::MatrixXd history(13, 3);
+  for (int i = 0; i < history.rows(); ++i)
+    for (int j = 0; j < 3; ++j) history(i, j) = std::cos(2.0 + i + 0.7 * j);
+  const auto [hb, he] = block(history.rows(), ranks() - 1 - rank(), ranks());
+  const bool last = rank() == ranks() - 1;
+
   CheckpointWriter w("fingerprint");
   w.put("cells/velocity", held);
   w.put("wall/labels", held_labels);
+  w.put_rows("cells/history", history.rows(), hb, history.middleRows(hb, he - hb));
+  w.put_rows("cells/7/coefficients", 4, 0, last ? Eigen::MatrixXd(whole.topRows(4)) : Eigen::MatrixXd(0, 3));
   w.put("steps", rank() == 0 ? 42LL : -1LL);
   w.put("time", rank() == 0 ? 0.25 : -1.0);
   w.put("case", std::string("title = \"x\""));
@@ -90,6 +100,8 @@ TEST(SharedCheckpoint, EachRankWritesItsRows) {
   const Checkpoint k = Checkpoint::read(file, "fingerprint");
   EXPECT_EQ(k.matrix("cells/velocity"), whole);
   EXPECT_EQ(k.int_matrix("wall/labels"), labels);
+  EXPECT_EQ(k.matrix("cells/history"), history);
+  EXPECT_EQ(k.matrix("cells/7/coefficients"), whole.topRows(4));
   EXPECT_EQ(k.integer("steps"), 42);
   EXPECT_EQ(k.real("time"), 0.25);
   EXPECT_EQ(k.text("case"), "title = \"x\"");

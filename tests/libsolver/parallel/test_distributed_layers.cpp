@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -1509,6 +1510,104 @@ TEST(DistributedStepper, VelocitiesHistoryFollowsItsOwners) {
   EXPECT_EQ(iterations_shared, iterations_one);
   const int np = static_cast<int>(grids->n_grid->grid().size());
   EXPECT_EQ(shared.velocity().rows(), static_cast<Eigen::Index>(owned_block(3, world).size()) * np);
+}
+
+namespace {
+
+// A checkpoint's items as the ranks write them together (scenario/checkpoint.cpp): each rank's
+// parts placed in a matrix of every row, summed over the ranks (each row given by one rank);
+// read back whole.
+class PartsArchive : public StateArchive {
+ public:
+  bool reading() const override { return reading_; }
+  void real(const std::string& name, double& x) override {
+    if (reading_) x = reals.at(name); else reals[name] = x;
+  }
+  void integer(const std::string& name, long& x) override {
+    if (reading_) x = static_cast<long>(reals.at(name)); else reals[name] = static_cast<double>(x);
+  }
+  void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
+    if (!reading_) {
+      if (required || x.size()) whole[name] = x;
+    } else {
+      x = required || whole.count(name) ? whole.at(name) : Eigen::MatrixXd();
+    }
+  }
+  void indices(const std::string& name, std::vector<int>& x) override {
+    if (!reading_) {
+      if (!x.empty()) order[name] = x;
+    } else {
+      x = order.count(name) ? order.at(name) : std::vector<int>();
+    }
+  }
+  bool takes_parts() const override { return true; }
+  void part(const std::string& name, long long total_rows, long long first_row, const Eigen::MatrixXd& rows) override {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(total_rows, rows.cols());
+    m.middleRows(first_row, rows.rows()) = rows;
+    whole[name] = m;
+    given_rows[name] = rows.rows();
+  }
+  // After writing: the parts summed over the ranks, then read back.
+  void assemble(const Communicator& ranks) {
+    for (auto& [name, m] : whole)
+      if (given_rows.count(name)) ranks.sum(m);
+    reading_ = true;
+  }
+
+  std::map<std::string, double> reals;
+  std::map<std::string, Eigen::MatrixXd> whole;
+  std::map<std::string, std::vector<int>> order;
+  std::map<std::string, long long> given_rows;  // of the parts this rank gave
+
+ private:
+  bool reading_ = false;
+};
+
+}  // namespace
+
+// A checkpoint written by the ranks together (CellStepper::save into an archive that takes
+// parts): after VelocitiesHistoryFollowsItsOwners' steps the owners are not the index blocks,
+// each rank gives the coefficients of the cells it holds and those cells' rows of the three
+// velocities (in the owners' order, cells/velocity_order), nothing gathered; the parts put
+// together and read back are the whole state, bit for bit.
+TEST(DistributedStepper, SavedFromEachRanksPartAlone) {
+  const Communicator world = Communicator::world();
+  const auto grids = CellGrids::make(8, 16);
+  CellStepper one = three_strained_cells_down_a_box(grids, {}), shared = three_strained_cells_down_a_box(grids, world);
+  for (int step = 0; step < 3; ++step) one.step();
+  shared.restore(one.state());
+  CellOwners owners;
+  for (int step = 0; step < 2; ++step) {
+    const FlowSolution b = shared.solve();
+    owners = b.owners;
+    shared.advance(b);
+  }
+  PartsArchive parts;
+  shared.save(parts);  // collective
+  const int r = world.rank();
+  const int np = static_cast<int>(grids->n_grid->grid().size());
+  if (world.size() > 1) {  // one process gives the whole state
+    for (int k = 0; k < 3; ++k) {
+      const int c = owners.order[k];
+      const bool own = k >= owners.first[r] && k < owners.first[r + 1];
+      EXPECT_EQ(parts.given_rows.at("cells/" + std::to_string(c) + "/coefficients") > 0, own) << "cell " << c;
+    }
+    EXPECT_EQ(parts.given_rows.at("cells/oldest_velocity"), (owners.first[r + 1] - owners.first[r]) * np);
+    ASSERT_FALSE(owners.in_cell_order()) << "the owners are the index blocks: the order is not tested";
+    EXPECT_EQ(parts.order.at("cells/velocity_order"), owners.order);
+  }
+  parts.assemble(world);
+  StepperState read;
+  read.archive(parts);
+  const StepperState whole = shared.state();
+  ASSERT_EQ(read.shapes.size(), 3u);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(read.shapes[c].values(), whole.shapes[c].values()) << "cell " << c;
+  EXPECT_EQ(read.previous_velocity, whole.previous_velocity);
+  EXPECT_EQ(read.older_velocity, whole.older_velocity);
+  EXPECT_EQ(read.oldest_velocity, whole.oldest_velocity);
+  EXPECT_EQ(read.volume0, whole.volume0);
+  EXPECT_EQ(read.steps, whole.steps);
+  EXPECT_EQ(read.time, whole.time);
 }
 
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells
