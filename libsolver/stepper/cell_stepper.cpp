@@ -171,7 +171,7 @@ FlowSolution CellStepper::solve() const {
   std::optional<HaloDensity> step_traction;
   std::vector<SlabPlanes> other_slabs;  // this rank's of the grids of the step's other operators
   std::vector<int> step_halo;           // the cells this rank reads or adds to besides its own (positions in owner order)
-  std::vector<int> held_cells;          // the owned and step_halo, ascending (several ranks; one: every cell)
+  std::vector<int> held_cells;          // the owned and step_halo, ascending (one process: every cell; a rank may hold none)
   std::vector<SHCoeffs> shapes;         // in owner order: the held cells' (several ranks; one: every cell)
   std::vector<CellSphere> owner_spheres;  // the cells' spheres in owner order (several ranks)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
@@ -226,7 +226,10 @@ FlowSolution CellStepper::solve() const {
       for (int k : held_cells) bring.push_back(owners.order[k]);
       s.shapes_received = bring_shapes(by_cell, history_owners_, bring, options_.domain.ranks);
     } else {
-      for (int k = 0; k < nc; ++k) shapes[k] = cells_[owners.order[k]].shape.coeffs();
+      for (int k = 0; k < nc; ++k) {
+        shapes[k] = cells_[owners.order[k]].shape.coeffs();
+        held_cells.push_back(k);
+      }
     }
     s.membrane.resize(nc);
     ScopedTimer membrane_timer(timing.membrane);

@@ -1,29 +1,17 @@
 #include "halo_density.h"
 
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 
 namespace rbcflow {
-
-namespace {
-
-std::vector<int> every_cell_unless(std::vector<int> held, int cells) {
-  if (!held.empty()) return held;
-  held.resize(static_cast<std::size_t>(cells));
-  std::iota(held.begin(), held.end(), 0);
-  return held;
-}
-
-}  // namespace
 
 HaloDensity::HaloDensity(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks,
                          std::vector<int> held)
     : owners_(std::move(owners)),
       nodes_per_cell_(nodes_per_cell),
       ranks_(ranks),
-      held_(every_cell_unless(std::move(held), static_cast<int>(owners_.order.size()))),
+      held_(std::move(held)),
       homes_(owners_.first, nodes_per_cell, ranks),
       owned_(std::move(owned)) {
   const int nc = static_cast<int>(owners_.order.size());

@@ -19,10 +19,10 @@ class HaloDensity {
  public:
   // `owned`: the rows of this rank's cells in `owners`' order (positions owners.first[rank] ..
   // owners.first[rank + 1] - 1). `held`: the cells whose rows the density has room for
-  // (positions in owner order, ascending, the owned among them: the step's layers' held_cells());
-  // empty: every cell.
+  // (positions in owner order, ascending, the owned among them: the step's layers' held_cells();
+  // one process: every cell). A rank may hold none.
   HaloDensity(Eigen::MatrixXd owned, CellOwners owners, int nodes_per_cell, const Communicator& ranks,
-              std::vector<int> held = {});
+              std::vector<int> held);
 
   // At the held cells' rows (the layers' held layout, CellLayers::nodes()): the owned cells'
   // rows and those brought so far, zero at the others. The operators refer to this matrix; it

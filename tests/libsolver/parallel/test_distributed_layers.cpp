@@ -36,6 +36,7 @@
 #include "libsolver/stepper/cell_measures.h"
 #include "libsolver/stepper/cell_stepper.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/halo_density.h"
 #include "libsolver/stepper/step_slabs.h"
 #include "libsolver/stepper/cell_velocity.h"
 
@@ -1681,6 +1682,26 @@ TEST(DistributedLayers, ARankWithoutCells) {
   const Eigen::MatrixXd f = smooth_density(serial.nodes().x);
   EXPECT_LT(relative(distributed.double_layer(f), serial.double_layer(f)), 1e-13);
   EXPECT_LT(relative(distributed.single_layer(f), serial.single_layer(f)), 1e-13);
+}
+
+// A density on ranks that neither own a cell nor read one (halo_density.h): one cell, owned by
+// rank 0; every other rank holds no cell, and its density has no rows (it had every cell's
+// rows once, "empty: every cell", which stopped constriction.toml on 2 ranks where its layers
+// held none). Rank 0's holds the cell's rows.
+TEST(HaloDensity, ARankThatHoldsNoCellHoldsNoRows) {
+  const Communicator world = Communicator::world();
+  const int np = 4;
+  CellOwners owners{{0}, std::vector<int>(static_cast<std::size_t>(world.size()) + 1, 1)};
+  owners.first[0] = 0;
+  const bool mine = world.rank() == 0;
+  Eigen::MatrixXd owned = Eigen::MatrixXd::Constant(mine ? np : 0, 3, 2.5);
+  HaloDensity d(owned, owners, np, world, mine ? std::vector<int>{0} : std::vector<int>{});
+  EXPECT_EQ(d.density().rows(), mine ? np : 0);
+  EXPECT_EQ(d.density().cols(), 3);
+  d.bring({});  // collective: nothing asked
+  if (mine) {
+    EXPECT_EQ(d.density(), owned);
+  }
 }
 
 // The wall solve with the assembled rows shared by the ranks and the smooth part on their slabs
