@@ -17,6 +17,7 @@
 #include <random>
 #include <span>
 #include <stdexcept>
+#include <utility>
 
 #include "geometry/surface/reference_shapes.h"
 #include "geometry/vessel/vessel.h"
@@ -1465,12 +1466,22 @@ CellStepper three_strained_cells_down_a_box(const std::shared_ptr<const CellGrid
   return CellStepper(std::move(cells), grids, o);
 }
 
+// three_strained_cells_down_a_box after 3 steps on one process, and on the world's ranks
+// restored to that state.
+struct OneAndShared {
+  CellStepper one, shared;
+};
+OneAndShared three_steps_then_shared(const std::shared_ptr<const CellGrids>& grids, const Communicator& world) {
+  OneAndShared s{three_strained_cells_down_a_box(grids, {}), three_strained_cells_down_a_box(grids, world)};
+  for (int step = 0; step < 3; ++step) s.one.step();
+  s.shared.restore(s.one.state());
+  return s;
+}
+
 TEST(DistributedStepper, VelocitiesHistoryFollowsItsOwners) {
   const Communicator world = Communicator::world();
   const auto grids = CellGrids::make(8, 16);
-  CellStepper one = three_strained_cells_down_a_box(grids, {}), shared = three_strained_cells_down_a_box(grids, world);
-  for (int step = 0; step < 3; ++step) one.step();
-  shared.restore(one.state());
+  auto [one, shared] = three_steps_then_shared(grids, world);
   int iterations_one = 0, iterations_shared = 0;
   for (int step = 0; step < 2; ++step) {
     const FlowSolution a = one.solve(), b = shared.solve();
@@ -1574,9 +1585,7 @@ class PartsArchive : public StateArchive {
 TEST(DistributedStepper, SavedFromEachRanksPartAlone) {
   const Communicator world = Communicator::world();
   const auto grids = CellGrids::make(8, 16);
-  CellStepper one = three_strained_cells_down_a_box(grids, {}), shared = three_strained_cells_down_a_box(grids, world);
-  for (int step = 0; step < 3; ++step) one.step();
-  shared.restore(one.state());
+  CellStepper shared = std::move(three_steps_then_shared(grids, world).shared);
   CellOwners owners;
   for (int step = 0; step < 2; ++step) {
     const FlowSolution b = shared.solve();
