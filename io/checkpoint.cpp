@@ -128,13 +128,19 @@ void CheckpointWriter::write(const fs::path& file, const Ranks& ranks) const {
   }
 }
 
-Checkpoint Checkpoint::read(const fs::path& file, const std::string& case_fingerprint) {
-  return read_checked(file, &case_fingerprint);
+struct Checkpoint::OpenFile {
+  h5::Id file;
+};
+
+Checkpoint Checkpoint::read(const fs::path& file, const std::string& case_fingerprint,
+                            const std::function<bool(const std::string& name)>& by_rows) {
+  return read_checked(file, &case_fingerprint, by_rows);
 }
 
-Checkpoint Checkpoint::read_any_case(const fs::path& file) { return read_checked(file, nullptr); }
+Checkpoint Checkpoint::read_any_case(const fs::path& file) { return read_checked(file, nullptr, {}); }
 
-Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* case_fingerprint) {
+Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* case_fingerprint,
+                                    const std::function<bool(const std::string& name)>& by_rows) {
   const std::string where = "checkpoint " + file.string();
   if (!fs::is_regular_file(file)) throw CheckpointError(where + ": no such file");
   const h5::QuietErrors quiet;
@@ -144,7 +150,7 @@ Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* cas
   Checkpoint c;
   c.file_ = file;
   try {
-    const h5::Id f = h5::open_file(file, false);
+    h5::Id f = h5::open_file(file, false);
     if (!h5::has_attribute(f.get(), "format") || h5::read_string_attribute(f.get(), "format") != kFormat) {
       throw CheckpointError(where + ": an HDF5 file, but not an rbcflow checkpoint");
     }
@@ -168,6 +174,10 @@ Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* cas
         c.items_.emplace(name, h5::read_integer(f.get(), name));
       } else if (info.kind == h5::Kind::text) {
         c.items_.emplace(name, h5::read_text(f.get(), name));
+      } else if (info.kind == h5::Kind::real && by_rows && by_rows(name)) {
+        const std::vector<hsize_t> dims = h5::shape(f.get(), name);
+        c.items_.emplace(name, ByRows{static_cast<long long>(dims[0]),
+                                      dims.size() == 2 ? static_cast<long long>(dims[1]) : 1LL});
       } else if (info.kind == h5::Kind::real) {
         c.items_.emplace(name, h5::read_matrix(f.get(), name));
       } else if (info.kind == h5::Kind::integer) {
@@ -176,6 +186,7 @@ Checkpoint Checkpoint::read_checked(const fs::path& file, const std::string* cas
         throw CheckpointError(where + ": item " + name + " has an unknown type");
       }
     }
+    if (by_rows) c.open_ = std::make_shared<const OpenFile>(OpenFile{std::move(f)});
   } catch (const CheckpointError&) {
     throw;
   } catch (const std::runtime_error& e) {
@@ -201,11 +212,39 @@ const T& Checkpoint::get(const std::string& name, const char* what) const {
 }
 
 const Eigen::MatrixXd& Checkpoint::matrix(const std::string& name) const {
+  const auto it = items_.find(name);
+  if (it != items_.end() && std::holds_alternative<ByRows>(it->second))
+    throw CheckpointError("checkpoint " + file_.string() + ": item " + name + " is read by rows (rows())");
   return get<Eigen::MatrixXd>(name, "a matrix of reals");
 }
 const Eigen::MatrixXi& Checkpoint::int_matrix(const std::string& name) const {
   return get<Eigen::MatrixXi>(name, "a matrix of integers");
 }
+std::pair<long long, long long> Checkpoint::matrix_size(const std::string& name) const {
+  const auto it = items_.find(name);
+  if (it != items_.end()) {
+    if (const ByRows* left = std::get_if<ByRows>(&it->second)) return {left->rows, left->cols};
+  }
+  const Eigen::MatrixXd& m = matrix(name);
+  return {m.rows(), m.cols()};
+}
+
+Eigen::MatrixXd Checkpoint::rows(const std::string& name, long long first, long long count) const {
+  const auto [rows, cols] = matrix_size(name);
+  if (first < 0 || count < 0 || first + count > rows) {
+    throw CheckpointError("checkpoint " + file_.string() + ": item " + name + " has " + std::to_string(rows) +
+                          " rows, not rows " + std::to_string(first) + " to " + std::to_string(first + count));
+  }
+  const auto it = items_.find(name);
+  if (!std::holds_alternative<ByRows>(it->second)) return std::get<Eigen::MatrixXd>(it->second).middleRows(first, count);
+  const h5::QuietErrors quiet;
+  try {
+    return h5::read_matrix_rows(open_->file.get(), name, first, count);
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError("checkpoint " + file_.string() + ": damaged or truncated (" + e.what() + ")");
+  }
+}
+
 long long Checkpoint::integer(const std::string& name) const { return get<long long>(name, "an integer"); }
 double Checkpoint::real(const std::string& name) const { return get<double>(name, "a real"); }
 const std::string& Checkpoint::text(const std::string& name) const { return get<std::string>(name, "a string"); }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -86,7 +87,10 @@ class Checkpoint {
  public:
   // Reads every item of `file`. Throws CheckpointError when the file is missing, is not an
   // HDF5 file or is truncated, is not an rbcflow checkpoint, or carries another fingerprint.
-  static Checkpoint read(const std::filesystem::path& file, const std::string& case_fingerprint);
+  // The matrices of reals that `by_rows` names are not read: the file stays open while the
+  // Checkpoint lives, and rows() reads the rows asked for (a rank of a run its own cells').
+  static Checkpoint read(const std::filesystem::path& file, const std::string& case_fingerprint,
+                         const std::function<bool(const std::string& name)>& by_rows = {});
   // The same without the fingerprint check: to find out which case a checkpoint belongs to.
   static Checkpoint read_any_case(const std::filesystem::path& file);
 
@@ -95,17 +99,27 @@ class Checkpoint {
   // The item `name` of that type; CheckpointError naming the file and item otherwise.
   const Eigen::MatrixXd& matrix(const std::string& name) const;
   const Eigen::MatrixXi& int_matrix(const std::string& name) const;
+  // A matrix of reals read whole or by rows: its (rows, columns), and its rows
+  // [first, first + count). matrix() of an item read by rows throws CheckpointError.
+  std::pair<long long, long long> matrix_size(const std::string& name) const;
+  Eigen::MatrixXd rows(const std::string& name, long long first, long long count) const;
   long long integer(const std::string& name) const;
   double real(const std::string& name) const;
   const std::string& text(const std::string& name) const;
 
  private:
-  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, long long, double, std::string>;
-  static Checkpoint read_checked(const std::filesystem::path& file, const std::string* case_fingerprint);
+  struct ByRows {  // a matrix of reals left in the file
+    long long rows = 0, cols = 0;
+  };
+  struct OpenFile;  // the file, open while an item is left in it
+  using Item = std::variant<Eigen::MatrixXd, Eigen::MatrixXi, ByRows, long long, double, std::string>;
+  static Checkpoint read_checked(const std::filesystem::path& file, const std::string* case_fingerprint,
+                                 const std::function<bool(const std::string& name)>& by_rows);
   template <typename T>
   const T& get(const std::string& name, const char* what) const;
   std::filesystem::path file_;
   std::map<std::string, Item> items_;
+  std::shared_ptr<const OpenFile> open_;
 };
 
 }  // namespace rbcflow

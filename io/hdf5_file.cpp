@@ -279,6 +279,29 @@ Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name) {
   return read_rows<int>(loc, name, H5T_NATIVE_INT);
 }
 
+Eigen::MatrixXd read_matrix_rows(hid_t loc, const std::string& name, long long first, long long count) {
+  const std::vector<hsize_t> dims = shape(loc, name);
+  if (dims.empty() || dims.size() > 2) fail("dataset " + name + " is not a vector or a matrix");
+  const long long rows = static_cast<long long>(dims[0]);
+  if (first < 0 || count < 0 || first + count > rows)
+    fail("rows " + std::to_string(first) + " to " + std::to_string(first + count) + " of " + name + ", which has " +
+         std::to_string(rows));
+  const Eigen::Index cols = dims.size() == 2 ? static_cast<Eigen::Index>(dims[1]) : 1;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(count, cols);
+  if (m.size() == 0) return m;
+  const Id set(checked(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose);
+  const Id file_space(checked(H5Dget_space(set.get()), "no dataspace of " + name), H5Sclose);
+  std::vector<hsize_t> start(dims.size(), 0), counts = dims;
+  start[0] = static_cast<hsize_t>(first);
+  counts[0] = static_cast<hsize_t>(count);
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, counts.data(), nullptr),
+        "cannot select rows of " + name);
+  const Id memory_space = dataspace(counts);
+  check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, m.data()),
+        "cannot read " + name);
+  return m;
+}
+
 std::vector<hsize_t> shape(hid_t loc, const std::string& name) {
   const Id set(checked(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose);
   const Id space(checked(H5Dget_space(set.get()), "no dataspace of " + name), H5Sclose);

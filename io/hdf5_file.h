@@ -79,6 +79,8 @@ void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m, 
 void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXi& m, RowBlock rows = {});
 Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name);
 Eigen::MatrixXi read_int_matrix(hid_t loc, const std::string& name);
+// The rows [first, first + count) of a matrix of reals (a hyperslab: only those are read).
+Eigen::MatrixXd read_matrix_rows(hid_t loc, const std::string& name, long long first, long long count);
 // Dimensions of a dataset.
 std::vector<hsize_t> shape(hid_t loc, const std::string& name);
 

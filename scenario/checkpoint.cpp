@@ -49,7 +49,13 @@ class CheckpointIn : public StateArchive {
   void real(const std::string& name, double& x) override { x = k_.real(name); }
   void integer(const std::string& name, long& x) override { x = static_cast<long>(k_.integer(name)); }
   void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) override {
-    x = required || k_.has(name) ? k_.matrix(name) : Eigen::MatrixXd();
+    x = required || k_.has(name) ? k_.rows(name, 0, k_.matrix_size(name).first) : Eigen::MatrixXd();
+  }
+  std::pair<long long, long long> matrix_size(const std::string& name) override {
+    return k_.has(name) ? k_.matrix_size(name) : std::pair<long long, long long>{0, 0};
+  }
+  Eigen::MatrixXd rows(const std::string& name, long long first, long long count) override {
+    return k_.rows(name, first, count);
   }
   void indices(const std::string& name, std::vector<int>& x) override {
     x.clear();
@@ -84,7 +90,11 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
 
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file) {
   const Case run = as_run_of_checkpoint(c, file);
-  const Checkpoint k = Checkpoint::read(file, case_fingerprint(run));
+  // The cells' coefficients and velocities are read by rows: on several ranks each rank reads
+  // its own cells' alone (CellStepper::load).
+  const Checkpoint k = Checkpoint::read(file, case_fingerprint(run), [](const std::string& name) {
+    return name.starts_with("cells/") && (name.ends_with("/coefficients") || name.ends_with("_velocity"));
+  });
   const long long version = k.has("state_version") ? k.integer("state_version") : 1;
   if (version < 1 || version > kCheckpointStateVersion) {
     throw CheckpointError(file.string() + ": checkpoint state version " + std::to_string(version) +

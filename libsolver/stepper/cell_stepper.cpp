@@ -829,7 +829,7 @@ StepperState CellStepper::held_state() const {
 void CellStepper::restore(const StepperState& s) {
   const std::size_t nc = cells_.size();
   const int np = points_per_cell();
-  if (s.part) throw std::invalid_argument("restore: a rank's part of a state, not the whole state");
+  const Communicator& ranks = options_.domain.ranks;
   if (s.shapes.size() != nc || s.volume0.size() != nc || s.area0.size() != nc)
     throw std::invalid_argument("restore: the state has " + std::to_string(s.shapes.size()) + " cells, the run " +
                                 std::to_string(nc));
@@ -837,8 +837,13 @@ void CellStepper::restore(const StepperState& s) {
     if (s.shapes[c].order() != cells_[c].shape.coeffs().order())
       throw std::invalid_argument("restore: cell " + std::to_string(c) + " has another spherical-harmonic order");
   }
+  // A rank's part: the cells of owned_block's block of the part's order, this rank's.
+  const OwnedRange block = owned_block(static_cast<int>(nc), ranks);
+  if (s.part && (s.part->order.size() != nc || s.part->begin != block.begin || s.part->end != block.end))
+    throw std::invalid_argument("restore: a part of the state read for another rank");
+  const long held_rows = static_cast<long>(s.part ? block.size() : static_cast<int>(nc)) * np;
   for (const Eigen::MatrixXd* u : {&s.previous_velocity, &s.older_velocity, &s.oldest_velocity}) {
-    if (u->size() && (u->rows() != static_cast<long>(nc) * np || u->cols() != 3))
+    if (u->size() && (u->rows() != held_rows || u->cols() != 3))
       throw std::invalid_argument("restore: a previous velocity does not fit the cells");
   }
   for (const PointField* f : {&s.previous_wall_force, &s.older_wall_force}) {
@@ -847,14 +852,18 @@ void CellStepper::restore(const StepperState& s) {
   }
   state_ = s;
   state_.shapes.clear();  // held once, in the cells
+  state_.part.reset();
   for (std::size_t c = 0; c < nc; ++c) cells_[c].shape.coeffs() = s.shapes[c];
-  history_owners_ = owners_by_block(static_cast<int>(nc), options_.domain.ranks.size());
-  const OwnedRange mine = owned_block(static_cast<int>(nc), options_.domain.ranks);
+  history_owners_ = owners_by_block(static_cast<int>(nc), ranks.size());
+  if (s.part) {  // the velocities are this rank's rows already, of the cells in the part's order
+    history_owners_.order = s.part->order;
+    return;
+  }
   for (Eigen::MatrixXd* u : {&state_.previous_velocity, &state_.older_velocity, &state_.oldest_velocity}) {
     if (u->size() == 0) {
       u->resize(0, 0);  // absent
     } else {
-      *u = u->middleRows(mine.begin * np, mine.size() * np).eval();  // this rank's block
+      *u = u->middleRows(block.begin * np, block.size() * np).eval();  // this rank's block
     }
   }
 }

@@ -140,8 +140,12 @@ struct StepReport {
 // guesses 3 U^{n-1} - 3 U^{n-2} + U^{n-3} and 2 F^{n-1} - F^{n-2}.
 struct StepperState {
   // Writes or reads every field under its checkpoint name (state_archive.h); throws
-  // std::invalid_argument when a cell's coefficients are not those of an order.
-  void archive(StateArchive& a);
+  // std::invalid_argument when a cell's coefficients are not those of an order. Reading with
+  // `ranks` of more than one, each rank reads only its part (`part`): owned_block's block of
+  // the cells in the order of the velocities' rows (cell order where the state was written
+  // whole), those cells' coefficients and rows; every other cell keeps its order and no
+  // coefficients.
+  void archive(StateArchive& a, const Communicator* ranks = nullptr);
 
   double time = 0.0;
   long steps = 0;
@@ -153,11 +157,12 @@ struct StepperState {
   Eigen::MatrixXd oldest_velocity;    // empty before the third step
   std::vector<double> volume0, area0;
 
-  // A rank's part of the state on several ranks, to be written by the ranks together
-  // (CellStepper::save): the cells in the order of the velocities' rows (every rank's, rank 0's
-  // first) and this rank's block of them, [begin, end). `shapes` then hold those cells'
-  // shapes (the others keep their order and no coefficients) and the velocities those cells'
-  // rows. Without it the state is whole, in cell order, as a checkpoint is always read back.
+  // A rank's part of the state on several ranks, written by the ranks together
+  // (CellStepper::save) or read by each (archive() with ranks, CellStepper::load): the cells in
+  // the order of the velocities' rows (every rank's, rank 0's first) and this rank's block of
+  // them, [begin, end). `shapes` then hold those cells' shapes (the others keep their order and
+  // no coefficients) and the velocities those cells' rows. Without it the state is whole, in
+  // cell order.
   struct Part {
     std::vector<int> order;
     int begin = 0, end = 0;
@@ -186,9 +191,10 @@ class CellStepper {
   // The <u> that drives a periodic flow at the start (where a tube velocity is held, the
   // cell-free one: each step's own is in its FlowSolution).
   const Eigen::Vector3d& mean_velocity() const { return options_.mean_velocity; }
-  // Every cell; on several ranks only the shapes of this rank's own cells (those it moved last)
-  // are held between steps (held_shapes.h: the others keep their order and no coefficients),
-  // and every shape after restore() until the first advance().
+  // Every cell; on several ranks only the shapes of this rank's own cells (those it moved last,
+  // or read by load()) are held between steps (held_shapes.h: the others keep their order and
+  // no coefficients), and every shape after restore() of a whole state until the first
+  // advance().
   const std::vector<Cell>& cells() const { return cells_; }
   const CellGrids& grids() const { return *grids_; }  // only with cells: a run of walls alone has none
   const WallCoupling* wall() const { return wall_.get(); }
@@ -211,11 +217,13 @@ class CellStepper {
   // nothing gathered; the whole state on one rank.
   StepperState held_state() const;
   // Throws std::invalid_argument when the state does not fit (cell count, order, wall size).
+  // A rank's part (StepperState::part, read for this rank's block of owned_block) leaves it
+  // holding that block's shapes and rows, as if its last step had owned them.
   void restore(const StepperState& s);
   // The state as checkpoint items (StepperState::archive) and the wall's nodes, which a
   // restart checks against the vessel as meshed then; load() throws as restore() does. On
   // several ranks save() is collective: each rank gives its part where the archive takes parts
-  // (held_state()), else the whole state (state()).
+  // (held_state()), else the whole state (state()); load() reads each rank's part alone.
   void save(StateArchive& a) const;
   void load(StateArchive& a);
   // load() of a state discretised otherwise (another order of the cells or another time

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbcflow {
@@ -22,6 +23,23 @@ class StateArchive {
   virtual void matrix(const std::string& name, Eigen::MatrixXd& x, bool required) = 0;
   // Cell numbers; written only when not empty, read as empty when absent.
   virtual void indices(const std::string& name, std::vector<int>& x) = 0;
+
+  // Reading: a matrix item's (rows, columns), (0, 0) where absent, and its rows
+  // [first, first + count), so that a rank reads only its part of the state (CellStepper::load
+  // on several ranks). The defaults read the whole matrix.
+  virtual std::pair<long long, long long> matrix_size(const std::string& name) {
+    Eigen::MatrixXd m;
+    matrix(name, m, false);
+    return {m.rows(), m.cols()};
+  }
+  virtual Eigen::MatrixXd rows(const std::string& name, long long first, long long count) {
+    Eigen::MatrixXd m;
+    matrix(name, m, true);
+    if (first < 0 || count < 0 || first + count > m.rows())
+      throw std::invalid_argument(name + " has " + std::to_string(m.rows()) + " rows, not rows " +
+                                  std::to_string(first) + " to " + std::to_string(first + count));
+    return m.middleRows(first, count);
+  }
 
   // Writing on several ranks: whether the archive takes a matrix from the ranks' parts of its
   // rows (part()), each rank giving those it holds, so that no rank gathers the whole state

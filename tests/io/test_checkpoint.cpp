@@ -96,6 +96,49 @@ TEST(Checkpoint, MissingOrMistypedItemNamesFileAndItem) {
   fs::remove_all(dir);
 }
 
+// Items read by rows (a rank reading its own cells' of a restart): their size and any block of
+// their rows equal the whole item's, bit for bit, with the file read on demand; the other items
+// are read whole; matrix() of such an item and rows outside it are CheckpointErrors naming them.
+TEST(Checkpoint, ItemsReadByRowsAreTheWholeItemsRows) {
+  const fs::path dir = fresh_dir("rbcflow_test_checkpoint_by_rows");
+  Eigen::MatrixXd velocity(40, 3), coeffs(16, 3);
+  velocity.setRandom();
+  coeffs.setRandom();
+  CheckpointWriter w("f");
+  w.put("cells/previous_velocity", velocity);
+  w.put("cells/0/coefficients", coeffs);
+  w.put("column", Eigen::VectorXd::LinSpaced(4, 0.0, 3.0));
+  w.put("wall/previous_force", velocity * 2);
+  w.write(dir / "c.h5");
+  const auto by_rows = [](const std::string& name) { return name.starts_with("cells/") || name == "column"; };
+  const Checkpoint c = Checkpoint::read(dir / "c.h5", "f", by_rows);
+  EXPECT_TRUE(c.has("cells/previous_velocity"));
+  EXPECT_EQ(c.matrix_size("cells/previous_velocity"), std::make_pair(40LL, 3LL));
+  EXPECT_EQ(c.rows("cells/previous_velocity", 12, 20), velocity.middleRows(12, 20));
+  EXPECT_EQ(c.rows("cells/previous_velocity", 0, 40), velocity);
+  EXPECT_EQ(c.rows("cells/previous_velocity", 40, 0).rows(), 0);
+  EXPECT_EQ(c.rows("cells/0/coefficients", 0, 16), coeffs);
+  EXPECT_EQ(c.matrix_size("column"), std::make_pair(4LL, 1LL));
+  EXPECT_EQ(c.rows("column", 1, 2), Eigen::Vector2d(1.0, 2.0));
+  EXPECT_EQ(c.matrix("wall/previous_force"), velocity * 2);  // read whole
+  EXPECT_EQ(c.rows("wall/previous_force", 39, 1), velocity.bottomRows(1) * 2);
+  const std::string file = (dir / "c.h5").string();
+  try {
+    c.matrix("cells/previous_velocity");
+    FAIL();
+  } catch (const CheckpointError& e) {
+    EXPECT_EQ(std::string(e.what()), "checkpoint " + file + ": item cells/previous_velocity is read by rows (rows())");
+  }
+  try {
+    c.rows("cells/previous_velocity", 30, 11);
+    FAIL();
+  } catch (const CheckpointError& e) {
+    EXPECT_EQ(std::string(e.what()), "checkpoint " + file + ": item cells/previous_velocity has 40 rows, not rows 30 to 41");
+  }
+  EXPECT_THROW(c.rows("cells/older_velocity", 0, 1), CheckpointError);
+  fs::remove_all(dir);
+}
+
 // put_rows in a file of one process: every row, or a clear error naming the item; rows beyond
 // the matrix are refused when put.
 TEST(Checkpoint, RowsOfOneProcessAreEveryRow) {

@@ -1552,6 +1552,15 @@ class PartsArchive : public StateArchive {
       x = order.count(name) ? order.at(name) : std::vector<int>();
     }
   }
+  // Reading by rows, counted (CellStepper::load on several ranks).
+  std::pair<long long, long long> matrix_size(const std::string& name) override {
+    return whole.count(name) ? std::make_pair<long long, long long>(whole.at(name).rows(), whole.at(name).cols())
+                             : std::make_pair(0LL, 0LL);
+  }
+  Eigen::MatrixXd rows(const std::string& name, long long first, long long count) override {
+    rows_read[name] += count;
+    return whole.at(name).middleRows(first, count);
+  }
   bool takes_parts() const override { return true; }
   void part(const std::string& name, long long total_rows, long long first_row, const Eigen::MatrixXd& rows) override {
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(total_rows, rows.cols());
@@ -1570,6 +1579,7 @@ class PartsArchive : public StateArchive {
   std::map<std::string, Eigen::MatrixXd> whole;
   std::map<std::string, std::vector<int>> order;
   std::map<std::string, long long> given_rows;  // of the parts this rank gave
+  std::map<std::string, long long> rows_read;   // by rows()
 
  private:
   bool reading_ = false;
@@ -1618,6 +1628,55 @@ TEST(DistributedStepper, SavedFromEachRanksPartAlone) {
   EXPECT_EQ(read.volume0, whole.volume0);
   EXPECT_EQ(read.steps, whole.steps);
   EXPECT_EQ(read.time, whole.time);
+}
+
+// A checkpoint written by the ranks together, read back on them (CellStepper::load): each rank
+// reads the coefficients of its block of the cells in the order their velocities were written
+// (cells/velocity_order, the owners' of the last step: not the index blocks) and those cells'
+// rows of the velocities, nothing of the other cells, and holds those shapes alone, as the
+// stepper that wrote it does; the next two steps are that stepper's, bit for bit (the same
+// cells held, the same rows, the same products). On one process the state is read whole.
+TEST(DistributedStepper, LoadedByEachRankFromItsPartAlone) {
+  const Communicator world = Communicator::world();
+  const auto grids = CellGrids::make(8, 16);
+  CellStepper shared = std::move(three_steps_then_shared(grids, world).shared);
+  for (int step = 0; step < 2; ++step) shared.step();
+  PartsArchive parts;
+  shared.save(parts);  // collective
+  parts.assemble(world);
+  CellStepper loaded = three_strained_cells_down_a_box(grids, world);
+  loaded.load(parts);
+  const int np = static_cast<int>(grids->n_grid->grid().size());
+  const OwnedRange block = owned_block(3, world);
+  std::vector<int> order = {0, 1, 2};
+  if (world.size() > 1) {
+    order = parts.order.at("cells/velocity_order");
+    ASSERT_NE(order, std::vector<int>({0, 1, 2})) << "the velocities in cell order: the order is not tested";
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int c = order[k];
+    const bool mine = world.size() == 1 || block.contains(k);
+    EXPECT_EQ(loaded.cells()[c].shape.coeffs().values().size() > 0, mine) << "cell " << c;
+    EXPECT_EQ(loaded.cells()[c].shape.coeffs().order(), grids->order) << "cell " << c;
+    if (world.size() > 1) {
+      const long long coefficients = static_cast<long long>(grids->order) * grids->order;
+      EXPECT_EQ(parts.rows_read["cells/" + std::to_string(c) + "/coefficients"], mine ? coefficients : 0) << "cell " << c;
+    }
+  }
+  if (world.size() > 1) {
+    for (const char* name : {"cells/previous_velocity", "cells/older_velocity", "cells/oldest_velocity"})
+      EXPECT_EQ(parts.rows_read[name], static_cast<long long>(block.size()) * np) << name;
+  }
+  EXPECT_EQ(loaded.velocity(), shared.velocity());
+  for (int step = 0; step < 2; ++step) {
+    const FlowSolution a = shared.solve(), b = loaded.solve();
+    EXPECT_EQ(b.gmres_cells, a.gmres_cells);
+    shared.advance(a);
+    loaded.advance(b);
+  }
+  for (int c = 0; c < 3; ++c)
+    EXPECT_EQ(loaded.cells()[c].shape.coeffs().values(), shared.cells()[c].shape.coeffs().values()) << "cell " << c;
+  EXPECT_EQ(loaded.velocity(), shared.velocity());
 }
 
 // The collision removal on the ranks (collision.h): each rank pushes its block of the cells
