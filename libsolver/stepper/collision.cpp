@@ -4,16 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <stdexcept>
 
-#include "geometry/cgal/aabb_tree.h"
-#include "geometry/surface/surface_projection.h"
 #include "libsolver/parallel/ownership.h"
-#include "libsolver/wall/centroid_bins.h"
 #include "libsolver/parallel/share_blocks.h"
+#include "libsolver/stepper/cell_proximity.h"
 #include "libsolver/stepper/held_shapes.h"
 
 namespace rbcflow {
@@ -21,25 +19,11 @@ namespace {
 
 // Points are pushed to h_s (1 + kOvershoot): the smoothed push then ends at or above h_s.
 constexpr double kOvershoot = 0.01;
-// Gauss-Newton iterations of the projection: seeded at a grid node a fraction of the grid
-// spacing away, within 2 h_s of the surface, it gains a factor ~ 2 h_s * curvature (< 0.2)
-// per iteration: 6 leave < 1e-5 of the grid spacing.
-constexpr int kProjectionIterations = 6;
 // The pushes are met to 1% of the largest at the pushed points (fit_push), within at most 50
 // iterations (the slowest pushes, a single point at the first Gauss colatitude, keep ~0.15 of
 // their size per analysis: 0.85^28 < 1%).
 constexpr double kFitTolerance = 0.01;
 constexpr int kFitIterations = 50;
-
-// One cell at the current pass: its grid points, a bounding sphere, and (when a neighbour
-// comes close) the AABB tree over its grid triangulation.
-struct CellView {
-  Eigen::MatrixXd points;
-  Eigen::Vector3d centre;
-  double radius = 0;
-  TriangleMesh mesh;
-  std::unique_ptr<TriangleAabbTree> tree;
-};
 
 struct Pass {
   std::vector<Eigen::MatrixXd> push;  // displacement of each grid point of the rank's block's cells
@@ -47,13 +31,6 @@ struct Pass {
   int cell_pairs = 0, wall_contacts = 0;
   double min_separation = std::numeric_limits<double>::infinity();
   int closest_cell = -1, closest_other = -1;  // where min_separation was found (-1 other: the wall)
-};
-
-// Cell b's image at b + offset is near cell a; `pair` numbers the unordered pair (a, b, +-offset).
-struct Neighbour {
-  int b = 0;
-  Eigen::Vector3d offset;
-  int pair = 0;
 };
 
 // A grid point of a cell closer than h_s to a neighbour: the separation it lacks (to h_s (1 +
@@ -73,84 +50,12 @@ std::vector<Contact> contacts_with_cell(const CellView& a, const CellView& b, co
   const double target = h_s * (1.0 + kOvershoot);
   for (int p = 0; p < a.points.rows(); ++p) {
     const Eigen::Vector3d q = a.points.row(p).transpose() - offset;  // in b's own frame
-    if ((q - b.centre).norm() > b.radius + 2.0 * h_s) continue;
-    const TriangleAabbTree::ClosestPoint c = b.tree->closest_point(q);
-    const auto tri = b.mesh.triangles.row(c.triangle);
-    const Eigen::Vector3d v0 = b.mesh.points.row(tri[0]).transpose();
-    const Eigen::Vector3d n = (b.mesh.points.row(tri[1]).transpose() - v0).cross(b.mesh.points.row(tri[2]).transpose() - v0);
-    const bool inside = (q - c.point).dot(n) < 0;
-    // The triangulation is within its chord sag (< h_s for a resolved cell) of the surface.
-    if (!inside && c.distance > 2.0 * h_s) continue;
-    const Eigen::Vector2d angles = triangulation_seed(b.mesh, grid, c.triangle, q);
-    const SurfaceProjection s = project_onto_surface(b_coeffs, q, angles[0], angles[1], kProjectionIterations);
-    min_separation = std::min(min_separation, s.signed_distance);
-    if (s.signed_distance < h_s) contacts.push_back({p, target - s.signed_distance, s.normal});
+    const std::optional<SurfaceProjection> s = project_within(b, b_coeffs, grid, q, 2.0 * h_s);
+    if (!s) continue;
+    min_separation = std::min(min_separation, s->signed_distance);
+    if (s->signed_distance < h_s) contacts.push_back({p, target - s->signed_distance, s->normal});
   }
   return contacts;
-}
-
-// Translations of cell b's images that may come within h_s of cell a: the minimum image and its
-// neighbours along the periodic axes (a box side may be shorter than two cells). For a == b
-// the unshifted cell is left out and of the images +o and -o only one is kept.
-std::vector<Eigen::Vector3d> close_images(const CellView& a, const CellView& b, bool same, const Eigen::Vector3d& period,
-                                          double h_s) {
-  const Eigen::Vector3d d = b.centre - a.centre;
-  const Eigen::Vector3d base = minimum_image(d, period) - d;
-  std::vector<Eigen::Vector3d> offsets{base};
-  for (int k = 0; k < 3; ++k) {
-    if (period[k] <= 0) continue;
-    const std::size_t n = offsets.size();
-    for (int s : {-1, 1})
-      for (std::size_t i = 0; i < n; ++i) offsets.push_back(offsets[i] + s * period[k] * Eigen::Vector3d::Unit(k));
-  }
-  std::vector<Eigen::Vector3d> close;
-  for (const Eigen::Vector3d& o : offsets) {
-    if ((d + o).norm() >= a.radius + b.radius + h_s) continue;
-    if (same) {
-      // o = 0 is the cell itself; keep o only when its first nonzero component is positive.
-      int k = 0;
-      while (k < 3 && o[k] == 0) ++k;
-      if (k == 3 || o[k] < 0) continue;
-    }
-    close.push_back(o);
-  }
-  return close;
-}
-
-// Every cell's images that may come within h_s of it, from the views' centres and radii alone.
-struct Neighbourhood {
-  std::vector<std::vector<Neighbour>> near;  // by cell
-  int pairs = 0;
-};
-
-// Each close pair is listed from both sides, so every cell pushes only its own points. The
-// candidates b of cell a are those whose centres lie within 2 r_max + h_s of a's (minimum
-// image: an image of b within r_a + r_b + h_s has the minimum image within it too), from bins
-// of the centres, in ascending order: the pairs of a loop over all, in its order.
-Neighbourhood find_neighbours(const std::vector<CellView>& views, const Eigen::Vector3d& period, double h_s) {
-  const int n = static_cast<int>(views.size());
-  Neighbourhood h;
-  h.near.resize(n);
-  std::vector<Eigen::Vector3d> centres;
-  double largest_radius = 0.0;
-  for (const CellView& v : views) {
-    centres.push_back(v.centre);
-    largest_radius = std::max(largest_radius, v.radius);
-  }
-  const CentroidBins bins(centres, period, 2.0 * largest_radius + h_s);
-  std::vector<int> candidates;
-  for (int a = 0; a < n; ++a) {
-    bins.candidates(views[a].centre, candidates);
-    for (const int b : candidates) {
-      if (b < a) continue;
-      for (const Eigen::Vector3d& o : close_images(views[a], views[b], a == b, period, h_s)) {
-        h.near[a].push_back({b, o, h.pairs});
-        h.near[b].push_back({a, -o, h.pairs});
-        ++h.pairs;
-      }
-    }
-  }
-  return h;
 }
 
 // The cells near those of `mine` that another rank pushes, ascending: the shapes this rank reads.
@@ -180,11 +85,8 @@ Pass detect(const std::vector<SHSurface>& cells, std::vector<CellView>& views, c
   std::vector<char> tree_needed(n, 0);
   for (int a = mine.begin; a < mine.end; ++a)
     for (const Neighbour& nb : near[a]) tree_needed[nb.b] = 1;
-  for (int a = 0; a < n; ++a) {
-    if (!tree_needed[a]) continue;
-    views[a].mesh = cells[a].triangulate(t);
-    views[a].tree = std::make_unique<TriangleAabbTree>(views[a].mesh);
-  }
+  for (int a = 0; a < n; ++a)
+    if (tree_needed[a]) build_tree(views[a], cells[a].coeffs(), t);
   // contacts[a][k]: cell a's points too close to its k-th neighbour; written by a's thread only.
   std::vector<std::vector<std::vector<Contact>>> contacts(n);
   for (int a = 0; a < n; ++a) contacts[a].resize(near[a].size());
@@ -364,11 +266,7 @@ CollisionReport remove_collisions(std::vector<SHSurface>& cells, const SHTransfo
     std::vector<CellView> views(n);
     std::vector<std::vector<std::span<double>>> spheres(n);
     for (int i = 0; i < n; ++i) spheres[i] = {std::span<double>(views[i].centre.data(), 3), std::span<double>(&views[i].radius, 1)};
-    for (int i = mine.begin; i < mine.end; ++i) {
-      views[i].points = grid_transform.synthesize(cells[i].coeffs());
-      views[i].centre = views[i].points.colwise().mean().transpose();
-      views[i].radius = (views[i].points.rowwise() - views[i].centre.transpose()).rowwise().norm().maxCoeff();
-    }
+    for (int i = mine.begin; i < mine.end; ++i) views[i] = cell_view(cells[i].coeffs(), grid_transform);
     share_blocks(ranks, spheres);
     const Neighbourhood near = find_neighbours(views, period, threshold);
     const std::vector<int> others = others_near(near, mine);
