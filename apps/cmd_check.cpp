@@ -161,6 +161,9 @@ void print_time(const Scenario& s) {
               PhysicalUnits(c.units).milliseconds(c.time.end), s.steps);
   std::printf("         collision threshold %g, volume constraint %s\n", c.time.collision_threshold,
               c.time.volume_constraint ? "on" : "off");
+  if (c.time.contact_range > 0)
+    std::printf("         contact repulsion: range %g, strength %g (traction %g at half the range)\n",
+                c.time.contact_range, c.time.contact_strength, 0.5 * c.time.contact_strength);
 }
 
 void print_output(const Case& c) {

@@ -147,6 +147,10 @@ struct CaseTime {
   double dt_safety = 0.5;
   TimeSchemeKind scheme = TimeSchemeKind::euler;
   double collision_threshold = 0.02;  // h_s; 0 disables collision removal
+  // The contact repulsion between membranes and from the wall (libsolver/stepper/contact_force.h):
+  // its range delta (0: none) and strength kappa, the traction at delta / 2 times 2.
+  double contact_range = 0.0;
+  double contact_strength = 0.0;
   bool volume_constraint = true;
   bool operator==(const CaseTime&) const = default;
 };

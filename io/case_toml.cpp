@@ -595,6 +595,16 @@ CaseTime read_time(Table& top) {
   tm.scheme = t->choice<TimeSchemeKind>("scheme", tm.scheme,
                                     {{"euler", TimeSchemeKind::euler}, {"ab2", TimeSchemeKind::ab2}});
   tm.collision_threshold = t->real("collision_threshold", tm.collision_threshold, closed(0, 0.5));
+  tm.contact_range = t->real("contact_range", tm.contact_range, closed(0, 0.5));
+  if (tm.contact_range > 0) {
+    if (!t->has("contact_strength")) t->fail("contact_strength", "is needed with contact_range (the repulsion's traction scale)");
+    tm.contact_strength = t->real("contact_strength", tm.contact_strength, open_closed(0, 1e9));
+    if (tm.contact_range <= tm.collision_threshold)
+      t->fail("contact_range", "must exceed collision_threshold (" + std::to_string(tm.collision_threshold) +
+                                   "): the repulsion acts between h_s and its range");
+  } else {
+    t->reject({"contact_strength"}, "a contact_range above 0");
+  }
   tm.volume_constraint = t->boolean("volume_constraint", tm.volume_constraint);
   t->finish();
   return tm;

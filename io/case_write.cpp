@@ -171,6 +171,10 @@ void write_time(Writer& w, const CaseTime& t) {
   }
   w.text("scheme", to_string(t.scheme));
   w.key("collision_threshold", t.collision_threshold);
+  if (t.contact_range > 0) {  // absent when off: a case without it hashes as before the keys existed
+    w.key("contact_range", t.contact_range);
+    w.key("contact_strength", t.contact_strength);
+  }
   w.key("volume_constraint", t.volume_constraint);
 }
 

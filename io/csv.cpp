@@ -97,7 +97,7 @@ const std::vector<std::string>& diagnostics_columns() {
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
       "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement",
       "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain", "cell_free_layer", "min_wall_gap",
-      "max_volume_correction"};
+      "max_volume_correction", "max_contact_traction", "contact_cells"};
   return columns;
 }
 
@@ -151,6 +151,7 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(csv_number(r.discharge_hematocrit)).add(csv_number(r.max_area_strain));
   row.add(csv_number(r.cell_free_layer)).add(csv_number(r.min_wall_gap));
   row.add(csv_number(r.max_volume_correction));
+  row.add(csv_number(r.max_contact_traction)).add(csv_integer(r.contact_cells));
   csv_.write(row.fields);
 }
 

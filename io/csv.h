@@ -41,6 +41,10 @@ struct DiagnosticsRow {
   std::optional<double> cell_free_layer;  // a tube or constriction with cells (cell_free_layer.h)
   std::optional<double> min_wall_gap;     // a wall and cells: closest approach of a cell to it
   std::optional<double> max_volume_correction;  // the volume constraint's largest restoration (cells and the constraint)
+  // The contact repulsion (cells and time.contact_range > 0): the largest force density it put
+  // on a membrane point, and the cells with a point within its range of another cell or the wall.
+  std::optional<double> max_contact_traction;
+  std::optional<int> contact_cells;
 };
 
 struct CellRow {

@@ -133,6 +133,8 @@ Case as_run_of_checkpoint(const Case& c, const std::filesystem::path& file) {
     }
     run.time.dt = before.time.dt;
     run.time.dt_safety = before.time.dt_safety;
+    run.time.contact_range = before.time.contact_range;
+    run.time.contact_strength = before.time.contact_strength;
   } catch (const std::exception&) {
     return c;  // no case to read: the fingerprint check names the file
   }
@@ -155,6 +157,18 @@ std::vector<std::string> rediscretised_keys(const Case& run, const Case& c) {
   }
   note("time.dt", run.time.dt ? number(*run.time.dt) : "\"auto\"", c.time.dt ? number(*c.time.dt) : "\"auto\"");
   if (!run.time.dt && !c.time.dt) note("time.dt_safety", number(run.time.dt_safety), number(c.time.dt_safety));
+  return changed;
+}
+
+std::vector<std::string> contact_keys(const Case& run, const Case& c) {
+  std::vector<std::string> changed;
+  const auto note = [&](const std::string& key, double before, double now) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s %.6g -> %.6g", key.c_str(), before, now);
+    if (before != now) changed.push_back(buf);
+  };
+  note("time.contact_range", run.time.contact_range, c.time.contact_range);
+  note("time.contact_strength", run.time.contact_strength, c.time.contact_strength);
   return changed;
 }
 

@@ -32,13 +32,19 @@ void write_checkpoint(const CellStepper& stepper, const Case& c, const std::file
 void read_checkpoint(CellStepper& stepper, const Case& c, const std::filesystem::path& file);
 // A restart continues the same physics and may change only its discretisation: the cells'
 // order and de-aliasing (cells.order, cells.dealias) and the time step (time.dt,
-// time.dt_safety). `c` with those keys set to the checkpoint's run's (the case it holds, or its
-// run's case.toml); `c` itself where the checkpoint's case cannot be read, so that the
-// fingerprint then decides alone. Throws nothing of its own.
+// time.dt_safety); and the contact repulsion (time.contact_range, time.contact_strength), the
+// model of what happens below the resolved gaps, so that a run whose cells jam can go on with
+// one. `c` with those keys set to the checkpoint's run's (the case it holds, or its run's
+// case.toml); `c` itself where the checkpoint's case cannot be read, so that the fingerprint
+// then decides alone. Throws nothing of its own.
 Case as_run_of_checkpoint(const Case& c, const std::filesystem::path& file);
 // The rediscretised keys whose values differ between `c` and `run`, as "key old -> new"; empty
 // for a restart of the same discretisation.
 std::vector<std::string> rediscretised_keys(const Case& run, const Case& c);
+// The contact repulsion's keys whose values differ between `c` and `run`, as "key old -> new"
+// (the state, its history included, continues exactly: only the forces from the next step on
+// differ).
+std::vector<std::string> contact_keys(const Case& run, const Case& c);
 // The case a checkpoint was written for: its `case` item, or, for a checkpoint without one,
 // the case.toml of the run that wrote it (RUN/checkpoints/step_N.h5). Throws CheckpointError
 // naming the file when neither is there.

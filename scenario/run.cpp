@@ -258,11 +258,12 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
   const bool quiet = r.request.quiet;
   // A restart may change the discretisation (checkpoint.h): its cells are placed as the
   // checkpoint's run placed them, at that run's order.
-  std::vector<std::string> rediscretised;
+  std::vector<std::string> rediscretised, contact_changes;
   std::optional<int> placed_at_order;
   if (!r.request.restart.empty()) {
     const Case run = as_run_of_checkpoint(c, r.request.restart);
     rediscretised = rediscretised_keys(run, c);
+    contact_changes = contact_keys(run, c);
     if (run.cells) placed_at_order = run.cells->order;
   }
   r.scenario = prepare_scenario(c, std::nullopt, placed_at_order);
@@ -286,6 +287,11 @@ Run::Run(RunRequest request) : state_(std::make_unique<State>()) {
       for (const std::string& k : rediscretised) changes += (changes.empty() ? "" : ", ") + k;
       std::printf("restart at another discretisation: %s (shapes resampled, step history started afresh)\n",
                   changes.c_str());
+    }
+    if (!contact_changes.empty()) {
+      std::string changes;
+      for (const std::string& k : contact_changes) changes += (changes.empty() ? "" : ", ") + k;
+      std::printf("restart with another contact repulsion: %s\n", changes.c_str());
     }
     if (r.scenario.placement_note) std::printf("%s\n", r.scenario.placement_note->c_str());
     if (const std::optional<double> U = r.scenario.options.tube_velocity) {

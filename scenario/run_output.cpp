@@ -159,6 +159,10 @@ DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, 
     row.wall_contacts = r.wall_contacts;
     row.collision_displacement = r.collision_displacement;
   }
+  if (r.contact) {
+    row.max_contact_traction = r.contact->max_traction;
+    row.contact_cells = r.contact->cells_in_range;
+  }
   return row;
 }
 

@@ -92,6 +92,7 @@ CellStepperOptions solver_options(const Case& c) {
     o.background = background(c.domain.background_flow);
   }
   o.collision_threshold = c.time.collision_threshold;
+  o.contact = ContactLaw{c.time.contact_range, c.time.contact_strength};
   return o;
 }
 

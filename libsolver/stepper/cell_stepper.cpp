@@ -78,6 +78,9 @@ CellStepper::CellStepper(std::vector<Cell> cells, std::shared_ptr<const CellGrid
   if (!cells_.empty() && !grids_) throw std::invalid_argument("CellStepper: cells need their grids");
   if (!(options_.dt > 0)) throw std::invalid_argument("CellStepper: dt must be positive");
   if (!(options_.viscosity_ratio > 0)) throw std::invalid_argument("CellStepper: the viscosity ratio must be positive");
+  if (!(options_.contact.range >= 0) || !(options_.contact.strength >= 0) ||
+      (options_.contact.range > 0 && options_.contact.strength == 0))
+    throw std::invalid_argument("CellStepper: a contact repulsion needs a positive range and strength");
   if (!options_.domain.box && !options_.background) {
     options_.background = [](const Eigen::Vector3d&) { return Eigen::Vector3d::Zero().eval(); };
   }
@@ -246,6 +249,27 @@ FlowSolution CellStepper::solve() const {
       if (cells_[c].body_force.isZero()) continue;
       const double area = surface_area(SHSurface(shapes[k]).geometry(*grids_->n_grid));
       rows.rowwise() -= (cells_[c].body_force / area).transpose();
+    }
+    if (options_.contact.active()) {
+      // The repulsion on this rank's own cells from every surface within its range: the
+      // cells near them are in the step's halo (held), which reaches the near-field distance.
+      std::vector<int> own(static_cast<std::size_t>(end - first));
+      for (int k = first; k < end; ++k) own[k - first] = k;
+      if (options_.domain.ranks.size() > 1)
+        for (int k = first; k < end; ++k)
+          if (options_.contact.range > cell_near_reach(owner_spheres[k].area, grids_->order, options_.quadrature))
+            throw std::invalid_argument("the contact range " + std::to_string(options_.contact.range) +
+                                        " exceeds the cells' near-field reach, which bounds the cells a rank holds");
+      const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
+      ContactReport near;
+      owned -= contact_force_density(shapes, own, *grids_->n_grid, period, wall_distance_.get(), options_.contact, near);
+      const Communicator& ranks = options_.domain.ranks;
+      near.cells_near_cells = static_cast<int>(ranks.sum(static_cast<long>(near.cells_near_cells)));
+      near.cells_near_wall = static_cast<int>(ranks.sum(static_cast<long>(near.cells_near_wall)));
+      near.cells_in_range = static_cast<int>(ranks.sum(static_cast<long>(near.cells_in_range)));
+      near.max_traction = -ranks.min(-near.max_traction);
+      near.min_separation = ranks.min(near.min_separation);
+      s.contact = near;
     }
     membrane_timer.stop();
     LayerDomain domain = options_.domain;
@@ -684,6 +708,7 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.max_area_strain = largest(report.max_area_strain, options_.domain.ranks);
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
+  report.contact = s.contact;
   if (!cells_.empty()) migrate_shapes(s.owners);  // the shapes of this rank's cells in s.owners, no others
   if (!cells_.empty() && wall_) {  // the cells in their vessel at X^n
     // The gap, hematocrit and cell-free layer of each rank's own cells in the step's products

@@ -1,7 +1,7 @@
 #pragma once
 // Time advancement of cells among vessel walls, the staggered scheme of section 2:
 //   solve():   membrane traction on the de-aliasing grid (eq. 22-23) minus any body-force
-//              density; the wall force F^n from (12) with U^{n-1}; the cell velocity U^n
+//              density and the contact repulsion's (contact_force.h); the wall force F^n from (12) with U^{n-1}; the cell velocity U^n
 //              from (10) with F^n (GMRES; lambda = 1 is explicit);
 //   advance(): X^{n+1} = X^n + dt U^n (forward Euler, eq. 11) or second-order
 //              Adams-Bashforth, then the kinematic collision removal of section 11.2
@@ -23,6 +23,7 @@
 #include "libsolver/operators/cell_owners.h"
 #include "libsolver/stepper/cell_velocity.h"
 #include "libsolver/stepper/collision.h"
+#include "libsolver/stepper/contact_force.h"
 #include "libsolver/stepper/section_flux.h"
 #include "libsolver/stepper/state_archive.h"
 #include "libsolver/stepper/step_timings.h"
@@ -50,6 +51,7 @@ struct CellStepperOptions {
   int gmres_max_iterations = 100;
   bool volume_constraint = false;
   double collision_threshold = 0.0;       // h_s; 0: no collision removal
+  ContactLaw contact;                     // repulsion between membranes and from the wall (contact_force.h); inactive by default
   QuadratureOptions quadrature;
   std::shared_ptr<const WallElements> wall;  // none: no vessel (periodic box only)
   WallSolveOptions wall_solve;
@@ -93,6 +95,8 @@ struct FlowSolution {
   int start_sweeps = 0;       // the first step's sweeps of (12) and (10) (lambda != 1 with a wall)
   double cell_residual = 0.0, wall_residual = 0.0;
   int near_wall_points = 0;   // wall nodes that needed a nearly-singular cell correction
+  // The contact repulsion's (contact_force.h; all zero without it): over every rank's own cells.
+  std::optional<ContactReport> contact;
   long cell_rows_received = 0;  // node rows the products of (10) brought this rank from the others
   long traction_rows_received = 0;  // node rows of the traction the step's operators brought it (halo_density.h)
   long velocity_rows_received = 0;  // node rows of U^n brought it: the flux sections' halo, its block of the cells
@@ -133,6 +137,8 @@ struct StepReport {
   int collision_pairs = 0;
   int wall_contacts = 0;
   double collision_displacement = 0.0;
+  // The contact repulsion at X^n (contact_force.h), when the options have one.
+  std::optional<ContactReport> contact;
 };
 
 // Everything a run needs to continue exactly (checkpoints): the shapes X^n, U^{n-1} and F^{n-1}

@@ -236,6 +236,14 @@ TEST(Case, FingerprintIgnoresOutputTitleEndTimeAndPreconditionerOnly) {
   Case c = a;
   c.domain.mean_velocity = Vec3{0, 0, 5.000000001};
   EXPECT_NE(case_fingerprint(a), case_fingerprint(c));
+  // The contact repulsion is physics; off, it is not written, so cases from before its keys
+  // existed keep their fingerprints.
+  Case d = a;
+  d.time.contact_range = 0.1;
+  d.time.contact_strength = 100.0;
+  EXPECT_NE(case_fingerprint(a), case_fingerprint(d));
+  EXPECT_EQ(case_toml(a).find("contact_"), std::string::npos);
+  EXPECT_EQ(parse_case(case_toml(d), "d.toml").time, d.time);
 }
 
 TEST(Case, MalformedTomlNamesFileAndLine) {
@@ -372,6 +380,15 @@ TEST(Case, InconsistentKeysAreErrors) {
   EXPECT_TRUE(contains(error_of(minimal("[vessel]\ndiameter = 3\nfillet_radius = 0.5\n")),
                        "vessel.fillet_radius: applies only to kind = \"bifurcation\" or \"network\""));
   EXPECT_TRUE(contains(error_of(minimal("[time]\ndt = 0.1\ndt_safety = 0.5\n")), "applies only to dt = \"auto\""));
+  // The contact repulsion: a range needs a strength, a strength a range, and the range must
+  // exceed h_s (the repulsion acts between the two).
+  EXPECT_TRUE(contains(error_of(minimal("[time]\ncontact_range = 0.1\n")),
+                       "time.contact_strength: is needed with contact_range"));
+  EXPECT_TRUE(contains(error_of(minimal("[time]\ncontact_strength = 100\n")),
+                       "time.contact_strength: applies only to a contact_range above 0"));
+  EXPECT_TRUE(contains(error_of(minimal("[time]\ncontact_range = 0.02\ncontact_strength = 100\n")),
+                       "time.contact_range: must exceed collision_threshold"));
+  EXPECT_TRUE(contains(error_of(minimal("[time]\ncontact_range = 0.1\ncontact_strength = 0\n")), "out of range"));
   EXPECT_TRUE(contains(error_of(minimal("[cells.membrane]\nlaw = \"neo-hookean\"\ndilatation_modulus = 1\n")),
                        "applies only to law"));
 }

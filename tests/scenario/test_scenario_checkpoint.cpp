@@ -181,6 +181,31 @@ TEST(ScenarioCheckpoint, ARestartMayRefineTheCellsAndTheTimeStep) {
   fs::remove(file);
 }
 
+// A restart may switch the contact repulsion on (or change it): the state, its history
+// included, reads back bit for bit, and only the forces of the next steps differ.
+TEST(ScenarioCheckpoint, ARestartMayChangeTheContactRepulsion) {
+  const auto run_owner = fresh_stepper();
+  CellStepper& run = *run_owner;
+  for (int i = 0; i < 3; ++i) run.step();
+  const fs::path file = temp_file("checkpoint_contact.h5");
+  write_checkpoint(run, kCase, file);
+  Case repelled = kCase;
+  repelled.time.contact_range = 0.1;
+  repelled.time.contact_strength = 50.0;
+  EXPECT_TRUE(rediscretised_keys(as_run_of_checkpoint(repelled, file), repelled).empty());
+  EXPECT_EQ(contact_keys(as_run_of_checkpoint(repelled, file), repelled),
+            (std::vector<std::string>{"time.contact_range 0 -> 0.1", "time.contact_strength 0 -> 50"}));
+  EXPECT_TRUE(contact_keys(kCase, kCase).empty());
+  Scenario s = prepare_scenario(repelled);
+  const auto restarted = make_stepper(s);
+  read_checkpoint(*restarted, repelled, file);
+  expect_same_state(run.state(), restarted->state());
+  const StepReport r = restarted->step();
+  ASSERT_TRUE(r.contact.has_value());  // one cell alone: nothing within range
+  EXPECT_EQ(r.contact->cells_in_range, 0);
+  fs::remove(file);
+}
+
 // At the same order and another time step the shapes read back bit for bit and the velocity
 // history is dropped (its first step is forward Euler, as a run's first is).
 TEST(ScenarioCheckpoint, ARestartAtAnotherTimeStepStartsItsHistoryAfresh) {
