@@ -138,6 +138,14 @@ Case resting_cell(int order, double dt, double shear_modulus = 10.0) {
                     "resting.toml");
 }
 
+// A run of kCase three steps on (its velocity history in use), its checkpoint written to `file`.
+std::unique_ptr<CellStepper> three_steps_checkpointed(const fs::path& file) {
+  auto run = fresh_stepper();
+  for (int i = 0; i < 3; ++i) run->step();
+  write_checkpoint(*run, kCase, file);
+  return run;
+}
+
 // The largest membrane traction on the cells of `s` (the background flow does not enter it).
 double largest_traction(CellStepper& s) { return s.solve().traction.rowwise().norm().maxCoeff(); }
 
@@ -184,11 +192,9 @@ TEST(ScenarioCheckpoint, ARestartMayRefineTheCellsAndTheTimeStep) {
 // A restart may switch the contact repulsion on (or change it): the state, its history
 // included, reads back bit for bit, and only the forces of the next steps differ.
 TEST(ScenarioCheckpoint, ARestartMayChangeTheContactRepulsion) {
-  const auto run_owner = fresh_stepper();
-  CellStepper& run = *run_owner;
-  for (int i = 0; i < 3; ++i) run.step();
   const fs::path file = temp_file("checkpoint_contact.h5");
-  write_checkpoint(run, kCase, file);
+  const auto run_owner = three_steps_checkpointed(file);
+  CellStepper& run = *run_owner;
   Case repelled = kCase;
   repelled.time.contact_range = 0.1;
   repelled.time.contact_strength = 50.0;
@@ -209,11 +215,9 @@ TEST(ScenarioCheckpoint, ARestartMayChangeTheContactRepulsion) {
 // At the same order and another time step the shapes read back bit for bit and the velocity
 // history is dropped (its first step is forward Euler, as a run's first is).
 TEST(ScenarioCheckpoint, ARestartAtAnotherTimeStepStartsItsHistoryAfresh) {
-  const auto run_owner = fresh_stepper();
-  CellStepper& run = *run_owner;
-  for (int i = 0; i < 3; ++i) run.step();
   const fs::path file = temp_file("checkpoint_new_dt.h5");
-  write_checkpoint(run, kCase, file);
+  const auto run_owner = three_steps_checkpointed(file);
+  CellStepper& run = *run_owner;
   Case halved = kCase;
   halved.time.dt = 0.005;
   Scenario s = prepare_scenario(halved);
