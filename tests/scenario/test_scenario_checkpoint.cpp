@@ -146,6 +146,14 @@ std::unique_ptr<CellStepper> three_steps_checkpointed(const fs::path& file) {
   return run;
 }
 
+// A fresh stepper of `c` restarted from `file`.
+std::unique_ptr<CellStepper> restarted_from(const Case& c, const fs::path& file) {
+  Scenario s = prepare_scenario(c);
+  auto stepper = make_stepper(s);
+  read_checkpoint(*stepper, c, file);
+  return stepper;
+}
+
 // The largest membrane traction on the cells of `s` (the background flow does not enter it).
 double largest_traction(CellStepper& s) { return s.solve().traction.rowwise().norm().maxCoeff(); }
 
@@ -202,9 +210,7 @@ TEST(ScenarioCheckpoint, ARestartMayChangeTheContactRepulsion) {
   EXPECT_EQ(contact_keys(as_run_of_checkpoint(repelled, file), repelled),
             (std::vector<std::string>{"time.contact_range 0 -> 0.1", "time.contact_strength 0 -> 50"}));
   EXPECT_TRUE(contact_keys(kCase, kCase).empty());
-  Scenario s = prepare_scenario(repelled);
-  const auto restarted = make_stepper(s);
-  read_checkpoint(*restarted, repelled, file);
+  const auto restarted = restarted_from(repelled, file);
   expect_same_state(run.state(), restarted->state());
   const StepReport r = restarted->step();
   ASSERT_TRUE(r.contact.has_value());  // one cell alone: nothing within range
@@ -220,9 +226,7 @@ TEST(ScenarioCheckpoint, ARestartAtAnotherTimeStepStartsItsHistoryAfresh) {
   CellStepper& run = *run_owner;
   Case halved = kCase;
   halved.time.dt = 0.005;
-  Scenario s = prepare_scenario(halved);
-  const auto restarted = make_stepper(s);
-  read_checkpoint(*restarted, halved, file);
+  const auto restarted = restarted_from(halved, file);
   EXPECT_EQ(restarted->state().shapes[0].values(), run.state().shapes[0].values());
   EXPECT_EQ(restarted->state().steps, 3);
   EXPECT_EQ(restarted->state().previous_velocity.size(), 0);
