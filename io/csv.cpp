@@ -97,7 +97,8 @@ const std::vector<std::string>& diagnostics_columns() {
       "tube_hematocrit", "max_volume_error", "max_area_error", "gmres_cells", "gmres_wall",
       "wall_residual", "seconds", "collision_pairs", "wall_contacts", "collision_displacement",
       "tube_velocity", "pseudo_shear_rate_per_s", "discharge_hematocrit", "max_area_strain", "cell_free_layer", "min_wall_gap",
-      "max_volume_correction", "max_contact_traction", "contact_cells"};
+      "max_volume_correction", "max_contact_traction", "contact_cells",
+      "max_area_strain_cell"};
   return columns;
 }
 
@@ -152,6 +153,7 @@ void DiagnosticsCsv::write(const DiagnosticsRow& r) {
   row.add(csv_number(r.cell_free_layer)).add(csv_number(r.min_wall_gap));
   row.add(csv_number(r.max_volume_correction));
   row.add(csv_number(r.max_contact_traction)).add(csv_integer(r.contact_cells));
+  row.add(csv_integer(r.max_area_strain_cell));
   csv_.write(row.fields);
 }
 

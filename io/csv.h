@@ -45,6 +45,7 @@ struct DiagnosticsRow {
   // on a membrane point, and the cells with a point within its range of another cell or the wall.
   std::optional<double> max_contact_traction;
   std::optional<int> contact_cells;
+  std::optional<int> max_area_strain_cell;  // with cells: the cell of max_area_strain
 };
 
 struct CellRow {

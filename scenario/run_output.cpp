@@ -142,7 +142,10 @@ DiagnosticsRow diagnostics_row(const CellStepper& stepper, const StepReport& r, 
     row.pseudo_shear_rate_per_s = PhysicalUnits(c.units).per_second(*r.tube_velocity / c.vessel->diameter);
   }
   row.discharge_hematocrit = r.discharge_hematocrit;
-  if (!stepper.cells().empty()) row.max_area_strain = r.max_area_strain;
+  if (!stepper.cells().empty()) {
+    row.max_area_strain = r.max_area_strain;
+    row.max_area_strain_cell = r.max_area_strain_cell;
+  }
   row.cell_free_layer = r.cell_free_layer;
   row.min_wall_gap = r.min_wall_gap;
   row.max_volume_correction = r.max_volume_correction;

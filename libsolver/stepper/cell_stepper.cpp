@@ -702,10 +702,22 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.wall_residual = s.wall_residual;
   report.mean_velocity = s.mean_velocity;
   report.pressure_gradient = s.pressure_gradient;
-  for (const MembraneState& m : s.membrane)  // the rank's own cells' (the others' are empty until shared)
-    if (m.dilatation.size() > 0)
-      report.max_area_strain = std::max(report.max_area_strain, (m.dilatation.array() - 1.0).abs().maxCoeff());
-  report.max_area_strain = largest(report.max_area_strain, options_.domain.ranks);
+  const int nc = static_cast<int>(cells_.size());
+  for (int c = 0; c < nc; ++c) {  // the rank's own cells' (the others' are empty until shared)
+    const MembraneState& m = s.membrane[c];
+    if (m.dilatation.size() == 0) continue;
+    const double strain = (m.dilatation.array() - 1.0).abs().maxCoeff();
+    if (report.max_area_strain_cell < 0 || strain > report.max_area_strain) {
+      report.max_area_strain = strain;
+      report.max_area_strain_cell = c;
+    }
+  }
+  const double strain = largest(report.max_area_strain, options_.domain.ranks);
+  if (nc > 0) {
+    const int holder = report.max_area_strain_cell >= 0 && report.max_area_strain == strain ? report.max_area_strain_cell : nc;
+    report.max_area_strain_cell = static_cast<int>(options_.domain.ranks.min(holder));
+  }
+  report.max_area_strain = strain;
   report.tube_velocity = s.tube_velocity;
   report.section_flux = s.section_flux;
   report.contact = s.contact;

@@ -123,6 +123,7 @@ struct StepReport {
   double max_area_error = 0.0;
   // Largest local area strain |J_S - 1| over the cells' membranes (N grid), before the step.
   double max_area_strain = 0.0;
+  int max_area_strain_cell = -1;  // the cell that has it (the first of several); -1 without cells
   // Through the options' tube section: the tube velocity U, and with cells in a tube along the
   // whole period the discharge hematocrit H_D = Q_cells / Q_tube (the cells' flux averaged
   // over the period, cell_flux.h).

@@ -48,7 +48,8 @@ TEST(Csv, DiagnosticsHeaderIsTheContract) {
             "pressure_gradient_y,pressure_gradient_z,effective_viscosity,tube_hematocrit,max_volume_error,"
             "max_area_error,gmres_cells,gmres_wall,wall_residual,seconds,collision_pairs,wall_contacts,"
             "collision_displacement,tube_velocity,pseudo_shear_rate_per_s,discharge_hematocrit,max_area_strain,"
-            "cell_free_layer,min_wall_gap,max_volume_correction,max_contact_traction,contact_cells");
+            "cell_free_layer,min_wall_gap,max_volume_correction,max_contact_traction,contact_cells,"
+            "max_area_strain_cell");
   { CellsCsv c(dir / "cells.csv"); }
   EXPECT_EQ(first_line(dir / "cells.csv"),
             "step,time,cell,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,volume,area,"

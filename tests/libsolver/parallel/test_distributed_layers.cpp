@@ -1303,6 +1303,7 @@ TEST(DistributedStepper, MembranesOnTheirRanksSharedForOutput) {
   const StepReport ra = one.advance(a), rb = shared.advance(b);
   EXPECT_GT(ra.max_area_strain, 0.0);
   EXPECT_EQ(rb.max_area_strain, ra.max_area_strain);
+  EXPECT_EQ(rb.max_area_strain_cell, ra.max_area_strain_cell);
 }
 
 // A red cell of shape `x` whose Skalak membrane (E_s 12.4, C 200, bending 0.0669) is at rest
