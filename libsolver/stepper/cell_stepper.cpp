@@ -178,6 +178,7 @@ FlowSolution CellStepper::solve() const {
   std::vector<SHCoeffs> shapes;         // in owner order: the held cells' (several ranks; one: every cell)
   std::vector<CellSphere> owner_spheres;  // the cells' spheres in owner order (several ranks)
   const Eigen::MatrixXd* traction = nullptr;  // step_traction's density, which the operators read
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // on the cells: body forces and the repulsion's
   DensityHalo bring_traction;                 // the rows of it an operator reads, brought
   if (nc > 0) {
     // The owners from the cells' spheres, each computed by the rank that moved the cell last
@@ -262,7 +263,12 @@ FlowSolution CellStepper::solve() const {
                                         " exceeds the cells' near-field reach, which bounds the cells a rank holds");
       const Eigen::Vector3d period = options_.domain.box ? options_.domain.box->lengths() : Eigen::Vector3d::Zero();
       ContactReport near;
-      owned -= contact_force_density(shapes, own, *grids_->n_grid, period, wall_distance_.get(), options_.contact, near);
+      const Eigen::MatrixXd g = contact_force_density(shapes, own, *grids_->n_grid, period, wall_distance_.get(), options_.contact, near);
+      owned -= g;
+      for (int k = first; k < end; ++k) {  // the repulsion's net force on each cell
+        const SurfaceGeometry geometry = SHSurface(shapes[k]).geometry(*grids_->n_grid);
+        external_force += g.middleRows(static_cast<Eigen::Index>(k - first) * np, np).transpose() * geometry.area_weight;
+      }
       const Communicator& ranks = options_.domain.ranks;
       near.cells_near_cells = static_cast<int>(ranks.sum(static_cast<long>(near.cells_near_cells)));
       near.cells_near_wall = static_cast<int>(ranks.sum(static_cast<long>(near.cells_near_wall)));
@@ -271,6 +277,12 @@ FlowSolution CellStepper::solve() const {
       near.min_separation = ranks.min(near.min_separation);
       s.contact = near;
     }
+    // The cells' external loads, body forces and the repulsion's, exert a net force on the fluid
+    // (the membrane's own traction integrates to zero on a closed surface): the periodic sums
+    // balance it by a uniform force density, a part of the mean pressure gradient (8) that the
+    // paper's force-free cells never carry (<grad p> = -(F_wall - external) / V).
+    for (int k = first; k < end; ++k) external_force += cells_[owners.order[k]].body_force;
+    options_.domain.ranks.sum(external_force);  // exactly zero without loads: (8) as the paper's
     membrane_timer.stop();
     LayerDomain domain = options_.domain;
     domain.owned_first = owners.first;
@@ -298,6 +310,9 @@ FlowSolution CellStepper::solve() const {
     s.near_wall_points = at_wall->near_points();
   }
   double sweep_tolerance = 0;  // > 0: the start sweeps' looser tolerance (below)
+  // The cells' loads' part of <grad p> (above); zero without a box.
+  const Eigen::Vector3d loads_gradient =
+      options_.domain.box ? Eigen::Vector3d(external_force / options_.domain.box->volume()) : Eigen::Vector3d::Zero();
   // U: at the layers' held rows (layers->nodes()), or empty (none yet).
   auto solve_wall = [&](const Eigen::MatrixXd& U, const PointField& guess) {
     // The cells' velocity at the wall nodes, this rank's part of it (its cells as sources, its
@@ -313,13 +328,13 @@ FlowSolution CellStepper::solve() const {
     ScopedTimer solve_timer(timing.wall_solve);
     if (options_.pressure_gradient) {
       w = wall_->solve(none, {}, 0, &v);
-      s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient, w.force);
+      s.mean_velocity = wall_->mean_velocity_for(*options_.pressure_gradient - loads_gradient, w.force);
       w.force += wall_->force_for_mean_velocity(s.mean_velocity);
     } else if (options_.tube_velocity) {
       // The guess's <u> part lies in the recycled space of the unit solves (tube_drive.h).
       w = wall_->solve(none, guess, sweep_tolerance, &v);
       const int a = options_.tube->axis;
-      const double at_rest = wall_->pressure_gradient(w.force)[a];
+      const double at_rest = wall_->pressure_gradient(w.force)[a] + loads_gradient[a];
       s.mean_velocity = Eigen::Vector3d::Unit(a) * tube_meter_->mean_velocity_for(*options_.tube_velocity, at_rest);
       w.force += wall_->force_for_mean_velocity(s.mean_velocity);
     } else {
@@ -330,7 +345,7 @@ FlowSolution CellStepper::solve() const {
     s.gmres_wall += w.gmres.iterations;
     s.wall_nodes_received += w.nodes_received;
     s.wall_residual = w.gmres.relative_residual;
-    s.pressure_gradient = wall_->pressure_gradient(w.force);
+    s.pressure_gradient = wall_->pressure_gradient(w.force) + loads_gradient;
     if (tube_meter_) {
       const int a = options_.tube->axis;
       s.tube_velocity = tube_meter_->tube_velocity(s.mean_velocity[a], s.pressure_gradient[a]);
@@ -703,7 +718,7 @@ StepReport CellStepper::advance(const FlowSolution& s) {
   report.mean_velocity = s.mean_velocity;
   report.pressure_gradient = s.pressure_gradient;
   const int nc = static_cast<int>(cells_.size());
-  for (int c = 0; c < nc; ++c) {  // the rank's own cells' (the others' are empty until shared)
+  for (int c = 0; c < static_cast<int>(s.membrane.size()); ++c) {  // the rank's own cells' (the others' are empty)
     const MembraneState& m = s.membrane[c];
     if (m.dilatation.size() == 0) continue;
     const double strain = (m.dilatation.array() - 1.0).abs().maxCoeff();

@@ -14,9 +14,9 @@
 // commonly add between membranes and walls; Lu, Rahimian & Zorin (J. Comput. Phys. 347, 2017)
 // replace it by a constraint, at the price of a complementarity problem each step. The
 // kinematic removal (collision.h, section 11.2 of the paper) alone holds a cell pressed on a
-// wall at h_s with no force: the flow's push goes into stretching the membrane, and a cell
-// draped over a bifurcation's divider gains area until the run blows up. With both, the
-// repulsion acts over [h_s, delta] and the removal is the backstop below h_s.
+// wall at h_s with no force. With both, the repulsion acts over [h_s, delta] and the removal
+// is the backstop below h_s. A cell's net repulsion is a load on the fluid: the stepper adds it
+// to the mean pressure gradient (8) as it does a body force (docs/method-notes.md).
 //
 // t is minus the derivative of the potential phi(d) = kappa / delta [delta^2 ln(delta / d) - 2 delta
 // (delta - d) + (delta^2 - d^2) / 2] per unit area (contact_potential); a sphere of radius R
