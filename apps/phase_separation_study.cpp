@@ -14,6 +14,26 @@ namespace rbcflow::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The law's FQ_E over FQ_B in [0, 1] (0 below X0, 1 above 1 - X0), named by its diameters and
+// H_D: the whole curve each point is compared with, not only its value there.
+StudyPlot::Curve law_curve(const PhaseSeparationLaw& law) {
+  char name[160];
+  std::snprintf(name, sizeof name, "Pries et al. 2005: %.3g um -> %.3g / %.3g um, H_D %.2f", law.parent_um,
+                law.alpha_um, law.beta_um, law.discharge_hematocrit);
+  StudyPlot::Curve c{name, {}, {}};
+  constexpr int kSamples = 400;
+  for (int i = 0; i <= kSamples; ++i) {
+    const double fq_b = static_cast<double>(i) / kSamples;
+    c.x.push_back(fq_b);
+    c.y.push_back(law.cell_fraction(fq_b));
+  }
+  return c;
+}
+
+}  // namespace
+
 PhaseSeparationStudy::PhaseSeparationStudy(fs::path out, bool quiet) : out_(std::move(out)), quiet_(quiet) {
   plot_.title = "Phase separation at the bifurcation: daughter alpha's share";
   plot_.x_title = "fraction of the parent's blood flow FQ_B";
@@ -71,6 +91,7 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
     plot_.bar_low.push_back(*p.cell_fraction_low);
     plot_.bar_high.push_back(*p.cell_fraction_high);
     laws_.push_back(law.value_or(-1));
+    if (law) plot_.reference_curves.push_back(law_curve(PhaseSeparationLaw{parent, alpha, beta, *hd}));
   }
 }
 

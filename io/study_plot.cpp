@@ -43,6 +43,9 @@ vtkPlot* add(vtkChartXY* chart, int type, const std::string& name, const std::ve
   return p;
 }
 
+const unsigned char kPalette[6][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
+                                      {214, 39, 40},  {148, 103, 189}, {140, 86, 75}};
+
 // An off-screen chart view of the given size on a white background.
 vtkNew<vtkContextView> chart_view(const std::filesystem::path& png, int width, int height) {
   if (!display_available()) {
@@ -75,9 +78,7 @@ vtkChartXY* add_chart(vtkContextView* view, const std::string& title, const std:
 void plot_curves(const CurvesPlot& c, const std::filesystem::path& png, int width, int height) {
   vtkNew<vtkContextView> view = chart_view(png, width, height);
   vtkChartXY* chart = add_chart(view, c.title, c.x_title, c.y_title);
-  static const unsigned char palette[6][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
-                                              {214, 39, 40},  {148, 103, 189}, {140, 86, 75}};
-  for (std::size_t k = 0; k < c.names.size(); ++k) add(chart, vtkChart::LINE, c.names[k], c.x[k], c.y[k], palette[k % 6], 2.0f);
+  for (std::size_t k = 0; k < c.names.size(); ++k) add(chart, vtkChart::LINE, c.names[k], c.x[k], c.y[k], kPalette[k % 6], 2.0f);
   write_png(view->GetRenderWindow(), png);
 }
 
@@ -91,6 +92,11 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
       add(chart, vtkChart::LINE, s.reference_name + " -10%", s.reference_diameter, s.reference_low, grey, 1.0f);
       add(chart, vtkChart::LINE, s.reference_name + " +10%", s.reference_diameter, s.reference_high, grey, 1.0f);
     }
+  }
+  // The points are blue (the palette's first colour): the further curves take the others.
+  for (std::size_t k = 0; k < s.reference_curves.size(); ++k) {
+    const StudyPlot::Curve& c = s.reference_curves[k];
+    add(chart, vtkChart::LINE, c.name, c.x, c.y, kPalette[1 + k % 5], 1.5f);
   }
   // Error bars as short vertical lines, then the points.
   for (std::size_t i = 0; i < s.diameter.size(); ++i) {
@@ -111,6 +117,9 @@ void plot_study(const StudyPlot& s, const std::filesystem::path& png, int width,
   }
   for (double v : s.reference_at_points) lo = std::min(lo, v), hi = std::max(hi, v);
   for (double v : s.reference) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (const StudyPlot::Curve& c : s.reference_curves) {
+    for (double v : c.y) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
   for (double v : s.reference_low) lo = std::min(lo, v);
   for (double v : s.reference_high) hi = std::max(hi, v);
   if (lo < hi) {

@@ -20,6 +20,13 @@ struct StudyPlot {
   // drawn as crosses at the points' diameters; empty: none.
   std::vector<double> reference_at_points;
   std::string reference_at_points_name;
+  // Further reference curves under the points, each in its own colour (the phase-separation
+  // law at each run's own diameters and H_D).
+  struct Curve {
+    std::string name;
+    std::vector<double> x, y;
+  };
+  std::vector<Curve> reference_curves;
 };
 
 // Writes `png` atomically; throws std::runtime_error when there is no display or it cannot.
