@@ -51,7 +51,7 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
                                           "parent_flow", "alpha_flow", "beta_flow", "blood_fraction",
                                           "parent_passages", "alpha_passages", "beta_passages", "cell_fraction",
                                           "cell_fraction_stderr", "cell_fraction_low", "cell_fraction_high",
-                                          "discharge_hematocrit", "pries_2005"});
+                                          "discharge_hematocrit", "pries_2005", "cell_fraction_batch_stderr"});
   }
   const PhaseSeparationPoint p = phase_separation_point(c.output.dir / "branches.csv", steady_fraction);
   const PhysicalUnits si(c.units);
@@ -71,7 +71,7 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
                csv_number(p.blood_fraction), std::to_string(p.parent_passages), std::to_string(p.alpha_passages),
                std::to_string(p.beta_passages), csv_number(p.cell_fraction), csv_number(p.cell_fraction_stderr),
                csv_number(p.cell_fraction_low), csv_number(p.cell_fraction_high),
-               csv_number(hd), csv_number(law)});
+               csv_number(hd), csv_number(law), csv_number(p.cell_fraction_batch_stderr)});
   if (!quiet_) {
     std::printf("%s: parent %.3g um, daughters %.3g and %.3g um; over t in [%.4g, %.4g] alpha takes %.3f of the blood",
                 name.c_str(), parent, alpha, beta, p.from_time, p.to_time, p.blood_fraction);
@@ -79,6 +79,7 @@ void PhaseSeparationStudy::add(const Case& c, const std::string& name, double st
       std::printf(" and %.3f +- %.3f of the cells (%ld passages; Wilson 68%% interval %.3f-%.3f)", *p.cell_fraction,
                   *p.cell_fraction_stderr, p.alpha_passages + p.beta_passages, *p.cell_fraction_low,
                   *p.cell_fraction_high);
+      if (p.cell_fraction_batch_stderr) std::printf(", batch-means s.e. %.3f", *p.cell_fraction_batch_stderr);
       if (law) std::printf("; Pries 2005 at the parent's H_D %.3f: %.3f", *hd, *law);
     } else {
       std::printf(" (no cell passed either daughter in that time)");

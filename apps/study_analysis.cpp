@@ -132,6 +132,9 @@ PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, do
   // weighs nothing.
   std::array<double, 3> flow_sum{}, weight_sum{}, previous{};
   std::array<long, 3> rows{}, before{}, last{};  // passages: the count before the window, and at its end
+  // The daughters' passages in each batch of the window (by the row's time).
+  std::vector<long> alpha_batches(kPassageBatches, 0), beta_batches(kPassageBatches, 0);
+  const double span = p.to_time - p.from_time;
   for (const auto& row : table.rows) {
     const long b = std::strtol(row[branch].c_str(), nullptr, 10);
     if (b < 0 || b > 2) throw std::runtime_error(csv.string() + ": branch " + row[branch] + " (a bifurcation has 0, 1, 2)");
@@ -141,6 +144,11 @@ PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, do
       before[b] = n;
       previous[b] = t;
       continue;
+    }
+    if (b > 0 && span > 0) {
+      const long new_passages = n - (rows[b] > 0 ? last[b] : before[b]);
+      const int k = std::min(kPassageBatches - 1, static_cast<int>((t - p.from_time) / span * kPassageBatches));
+      (b == 1 ? alpha_batches : beta_batches)[k] += new_passages;
     }
     last[b] = n;
     const double w = t - std::max(previous[b], p.from_time);
@@ -167,8 +175,26 @@ PhaseSeparationPoint phase_separation_point(const std::filesystem::path& csv, do
     const ProportionInterval wilson = wilson_interval(p.alpha_passages, n, 1.0);
     p.cell_fraction_low = wilson.low;
     p.cell_fraction_high = wilson.high;
+    int filled = 0;
+    for (int k = 0; k < kPassageBatches; ++k) filled += alpha_batches[k] + beta_batches[k] > 0;
+    if (filled >= 2) p.cell_fraction_batch_stderr = batch_ratio_stderr(alpha_batches, beta_batches);
   }
   return p;
+}
+
+double batch_ratio_stderr(const std::vector<long>& alpha, const std::vector<long>& beta) {
+  if (alpha.size() != beta.size() || alpha.size() < 2)
+    throw std::invalid_argument("batch_ratio_stderr: needs two or more batches, as many of alpha as of beta");
+  double a = 0, n = 0;
+  for (std::size_t k = 0; k < alpha.size(); ++k) a += alpha[k], n += alpha[k] + beta[k];
+  if (!(n > 0)) throw std::invalid_argument("batch_ratio_stderr: no passages");
+  const double f = a / n, batches = static_cast<double>(alpha.size());
+  double sum = 0;
+  for (std::size_t k = 0; k < alpha.size(); ++k) {
+    const double r = alpha[k] - f * (alpha[k] + beta[k]);
+    sum += r * r;
+  }
+  return std::sqrt(batches / (batches - 1) * sum) / n;
 }
 
 ProportionInterval wilson_interval(long successes, long trials, double z) {

@@ -5,6 +5,7 @@
 // mean pressure gradient; for a bifurcation, from its branches.csv, the split of blood and cells.
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 namespace rbcflow::cli {
 
@@ -46,7 +47,23 @@ struct PhaseSeparationPoint {
   // Wilson score interval at z = 1 (the coverage of +- one standard error, 68%), which stays
   // honest at a handful of passages with f near 0 or 1, where the standard error shrinks to 0.
   std::optional<double> cell_fraction, cell_fraction_stderr, cell_fraction_low, cell_fraction_high;
+  // The standard error of the cell fraction by batch means (batch_ratio_stderr over the window
+  // cut into kPassageBatches equal times): near the binomial one where passages are
+  // independent, larger where cells go one way in trains. Empty unless passages fall in at
+  // least two batches.
+  std::optional<double> cell_fraction_batch_stderr;
 };
+
+inline constexpr int kPassageBatches = 10;
+
+// The standard error of the ratio f = sum a_k / sum (a_k + b_k) from its batches (a_k, b_k:
+// the passages through alpha and beta in batch k), treating the batches, not the passages, as
+// independent: the ratio estimator's variance (W. G. Cochran, Sampling Techniques, 3rd ed.,
+// Wiley 1977, ch. 6),
+//   se^2 = K / (K - 1) sum_k (a_k - f n_k)^2 / N^2,   n_k = a_k + b_k, N = sum n_k, K batches,
+// whose mean is the binomial f (1 - f) / N when every passage is independent. Throws
+// std::invalid_argument on batches of different counts, fewer than two or no passage.
+double batch_ratio_stderr(const std::vector<long>& alpha, const std::vector<long>& beta);
 
 // The Wilson score interval of a binomial proportion: `successes` of `trials` (> 0), at z
 // standard normal deviates (E. B. Wilson, J. Am. Stat. Assoc. 22 (1927) 209; R. G. Newcombe,

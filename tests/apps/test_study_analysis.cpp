@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <random>
@@ -211,6 +212,61 @@ TEST(StudyAnalysis, WilsonIntervalMatchesNewcombesTable) {
   EXPECT_GT(1.0 - cli::wilson_interval(17, 17, 1.0).low, 0.05);  // 17 of 17: the standard error is 0
   EXPECT_THROW(cli::wilson_interval(3, 2, 1.0), std::invalid_argument);
   EXPECT_THROW(cli::wilson_interval(0, 0, 1.0), std::invalid_argument);
+}
+
+// The batch-means error of the cell fraction on passages written by hand, 20 over t in (0, 1]
+// (two in each tenth): alpha takes both in the first five tenths and beta both in the last
+// five, so f = 1/2, every batch's residual a_k - f n_k is +-1 and se^2 = 10/9 x 10 / 20^2:
+// 1/6, where the binomial error of independent passages is sqrt(1/4 / 20) = 0.112. Had each
+// tenth one of each, every batch would be the whole's image and the error 0.
+TEST(StudyAnalysis, PhaseSeparationBatchErrorSeesTrains) {
+  const fs::path path = fs::temp_directory_path() / "rbcflow_test_study_analysis_trains.csv";
+  fs::remove(path);
+  {
+    BranchesCsv csv(path);
+    long alpha = 0, beta = 0;
+    for (int i = 1; i <= 100; ++i) {
+      if (i % 5 == 3) (i <= 50 ? alpha : beta) += 1;  // steps 3 and 8 in the first tenth, ...
+      const double t = 0.01 * i;
+      csv.write({{i, t, 0, 2.0, 3, alpha + beta}, {i, t, 1, 1.0, 2, alpha}, {i, t, 2, 1.0, 1, beta}});
+    }
+  }
+  const cli::PhaseSeparationPoint p = cli::phase_separation_point(path, 0.0);
+  ASSERT_TRUE(p.cell_fraction && p.cell_fraction_batch_stderr);
+  EXPECT_DOUBLE_EQ(*p.cell_fraction, 0.5);
+  EXPECT_NEAR(*p.cell_fraction_stderr, std::sqrt(0.25 / 20), 1e-15);
+  EXPECT_NEAR(*p.cell_fraction_batch_stderr, 1.0 / 6, 1e-15);
+  EXPECT_DOUBLE_EQ(cli::batch_ratio_stderr(std::vector<long>(10, 1), std::vector<long>(10, 1)), 0.0);
+  fs::remove(path);
+}
+
+// Independent passages: each of N = 400 goes to alpha with p = 0.7, spread over 10 batches
+// by a multinomial draw. The ratio estimator's variance then has the binomial one as its mean:
+// over 2,000 draws the mean of se_batch^2 / (f (1 - f) / N) is 1 to within 0.04 (the ratio has
+// a relative spread of about sqrt(2 / 9) = 0.47 over 9 degrees of freedom, 0.0105 in a mean of
+// 2,000: 3.8 of those; the estimator's bias is O(1 / N)).
+TEST(StudyAnalysis, BatchErrorOfIndependentPassagesIsBinomial) {
+  std::mt19937 rng(20261205);
+  std::bernoulli_distribution to_alpha(0.7);
+  std::uniform_int_distribution<int> batch(0, 9);
+  double sum = 0;
+  const int draws = 2000, n = 400;
+  for (int d = 0; d < draws; ++d) {
+    std::vector<long> alpha(10, 0), beta(10, 0);
+    long a = 0;
+    for (int i = 0; i < n; ++i) {
+      const bool yes = to_alpha(rng);
+      a += yes;
+      (yes ? alpha : beta)[batch(rng)] += 1;
+    }
+    const double f = static_cast<double>(a) / n, se = cli::batch_ratio_stderr(alpha, beta);
+    sum += se * se / (f * (1 - f) / n);
+  }
+  std::printf("mean of se_batch^2 / (f (1 - f) / N) over %d draws: %.4f\n", draws, sum / draws);
+  EXPECT_NEAR(sum / draws, 1.0, 0.04);
+  EXPECT_THROW(cli::batch_ratio_stderr({1}, {1}), std::invalid_argument);
+  EXPECT_THROW(cli::batch_ratio_stderr({0, 0}, {0, 0}), std::invalid_argument);
+  EXPECT_THROW(cli::batch_ratio_stderr({1, 2}, {1}), std::invalid_argument);
 }
 
 // The flows are time means: a run restarted at half the time step (docs/running.md) writes
